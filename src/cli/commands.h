@@ -1,0 +1,13 @@
+// Each subcommand registers its options on the CLI11 app and returns what to run.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace quadtri::cli {
+
+using Action = std::function<int()>;
+
+Action addMeshCommand(CLI::App& app);
+
+}  // namespace quadtri::cli

@@ -1,0 +1,36 @@
+// quadtri: quadric triangles from triangle meshes, their analysis and rendering.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <vector>
+
+#include "cli/commands.h"
+#include "math/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"quadtri: turns triangle meshes into curved quadric triangles and measures them"};
+  app.require_subcommand(1);
+  std::vector<std::pair<CLI::App*, quadtri::cli::Action>> commands;
+  auto add = [&](quadtri::cli::Action (*registerFn)(CLI::App&)) {
+    const size_t before = app.get_subcommands({}).size();
+    quadtri::cli::Action action = registerFn(app);
+    commands.emplace_back(app.get_subcommands({})[before], std::move(action));
+  };
+  add(&quadtri::cli::addMeshCommand);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (auto& [sub, action] : commands)
+      if (sub->parsed()) return action();
+  } catch (const quadtri::Error& e) {
+    std::fprintf(stderr, "quadtri: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "quadtri: internal error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

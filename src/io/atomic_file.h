@@ -1,0 +1,20 @@
+// Outputs are written to a temporary file beside the target and renamed into place, so an error
+// never leaves a half-written file behind.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace quadtri {
+
+/// Calls write(tmp) with a temporary path in the target's folder that keeps the target's
+/// extension (image writers choose the format from it), then renames tmp to `path`. If write
+/// throws, the temporary file is removed and the exception propagates.
+void writeAtomically(const std::filesystem::path& path,
+                     const std::function<void(const std::filesystem::path& tmp)>& write);
+
+/// Writes `text` to `path` atomically.
+void writeTextFile(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace quadtri

@@ -1,0 +1,174 @@
+#include "mesh/mesh_io.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "io/atomic_file.h"
+#include <fmt/ranges.h>
+
+#include "math/error.h"
+
+namespace quadtri {
+namespace {
+
+struct VecLess {
+  bool operator()(const Vec3& a, const Vec3& b) const {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  }
+};
+
+std::string lowerExtension(const std::filesystem::path& p) {
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+}  // namespace
+
+TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
+  const std::string name = path.string();
+  if (!std::filesystem::exists(path)) fail("{}: no such file", name);
+  const std::string ext = lowerExtension(path);
+  if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
+    fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
+  Assimp::Importer importer;
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFile(
+      name, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices);
+  if (!scene || !scene->mRootNode) fail("{}: cannot read mesh ({})", name, importer.GetErrorString());
+  TriangleMesh mesh;
+  std::map<Vec3, uint32_t, VecLess> weld, normalWeld;
+  bool allHaveNormals = scene->mNumMeshes > 0 && ext != ".stl";
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+    if (!scene->mMeshes[m]->HasNormals()) allHaveNormals = false;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* am = scene->mMeshes[m];
+    std::vector<uint32_t> pos(am->mNumVertices), nrm(am->mNumVertices);
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+      const Vec3 p(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
+      if (!allFinite(p)) fail("{}: vertex {} of mesh {} has a non-finite coordinate", name, v, m);
+      auto [it, inserted] = weld.try_emplace(p, uint32_t(mesh.positions.size()));
+      if (inserted) mesh.positions.push_back(p);
+      pos[v] = it->second;
+      if (allHaveNormals) {
+        const Vec3 n(am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z);
+        // A zero or broken normal in the file is replaced by the face normal below (marked ~0u).
+        if (!allFinite(n) || !(n.norm() > 1e-12)) {
+          nrm[v] = ~0u;
+          continue;
+        }
+        auto [nit, ninserted] = normalWeld.try_emplace(n.normalized(), uint32_t(mesh.normals.size()));
+        if (ninserted) mesh.normals.push_back(n.normalized());
+        nrm[v] = nit->second;
+      }
+    }
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      mesh.triangles.push_back({pos[face.mIndices[0]], pos[face.mIndices[1]], pos[face.mIndices[2]]});
+      if (allHaveNormals) {
+        Tri ni{nrm[face.mIndices[0]], nrm[face.mIndices[1]], nrm[face.mIndices[2]]};
+        for (uint32_t& i : ni)
+          if (i == ~0u) {
+            mesh.normals.push_back(mesh.faceNormal(mesh.triangles.size() - 1));
+            i = uint32_t(mesh.normals.size() - 1);
+          }
+        mesh.normalIndices.push_back(ni);
+      }
+    }
+  }
+  if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
+  if (!allHaveNormals || source != NormalSource::File)
+    computeVertexNormals(mesh, source == NormalSource::File ? NormalSource::Average : source);
+  mesh.validate(name);
+  return mesh;
+}
+
+void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  for (const Vec3& p : mesh.positions)
+    if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
+  if (ext == ".obj") {
+    std::ostringstream out;
+    out.precision(17);
+    out << "# written by quadtri\n";
+    for (const Vec3& p : mesh.positions) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    for (const Vec3& n : mesh.normals) out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      out << 'f';
+      for (int k = 0; k < 3; ++k) {
+        out << ' ' << mesh.triangles[t][k] + 1;
+        if (mesh.hasNormals()) out << "//" << mesh.normalIndices[t][k] + 1;
+      }
+      out << '\n';
+    }
+    writeTextFile(path, out.str());
+    return;
+  }
+  if (ext == ".ply") {
+    // PLY has per-vertex attributes only: split normals become duplicated vertices.
+    std::vector<Vec3> pos, nrm;
+    std::vector<Tri> tris;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> ids;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      Tri out{};
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t pi = mesh.triangles[t][k];
+        const uint32_t ni = mesh.hasNormals() ? mesh.normalIndices[t][k] : 0;
+        auto [it, inserted] = ids.try_emplace({pi, ni}, uint32_t(pos.size()));
+        if (inserted) {
+          pos.push_back(mesh.positions[pi]);
+          if (mesh.hasNormals()) nrm.push_back(mesh.normals[ni]);
+        }
+        out[k] = it->second;
+      }
+      tris.push_back(out);
+    }
+    std::ostringstream out(std::ios::binary);
+    out << "ply\nformat binary_little_endian 1.0\ncomment written by quadtri\n"
+        << "element vertex " << pos.size() << "\nproperty float x\nproperty float y\nproperty float z\n";
+    if (!nrm.empty()) out << "property float nx\nproperty float ny\nproperty float nz\n";
+    out << "element face " << tris.size() << "\nproperty list uchar uint vertex_indices\nend_header\n";
+    auto put = [&](const auto& value) { out.write(reinterpret_cast<const char*>(&value), sizeof(value)); };
+    for (size_t i = 0; i < pos.size(); ++i) {
+      for (int c = 0; c < 3; ++c) put(float(pos[i][c]));
+      if (!nrm.empty())
+        for (int c = 0; c < 3; ++c) put(float(nrm[i][c]));
+    }
+    for (const Tri& t : tris) {
+      put(uint8_t(3));
+      for (uint32_t i : t) put(i);
+    }
+    writeTextFile(path, out.str());
+    return;
+  }
+  fail("{}: unsupported output format '{}': expected .obj or .ply", path.string(), ext);
+}
+
+}  // namespace quadtri
+
+namespace quadtri {
+
+BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source) {
+  if (std::filesystem::exists(spec)) {
+    BuiltinMesh b;
+    b.mesh = loadMesh(spec, source);
+    b.description = std::filesystem::path(spec).filename().string();
+    return b;
+  }
+  std::optional<BuiltinMesh> b = parseBuiltinSpec(spec);
+  if (!b) {
+    fail("{}: no such file, and not a built-in shape (expected a mesh file or one of {})", spec,
+         fmt::join(builtinShapeNames(), ", "));
+  }
+  if (source != NormalSource::File) computeVertexNormals(b->mesh, source);
+  return std::move(*b);
+}
+
+}  // namespace quadtri

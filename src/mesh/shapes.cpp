@@ -1,0 +1,295 @@
+#include "mesh/shapes.h"
+
+#include <charconv>
+#include <map>
+
+#include <fmt/ranges.h>
+
+#include "math/error.h"
+#include "mesh/normals.h"
+
+namespace quadtri {
+namespace {
+
+// Distance from p to the ellipsoid x²/a²+y²/b²+z²/c²=1: the nearest point is
+// q_i = a_i² p_i / (a_i² + s) for the root s of F(s) = Σ (a_i p_i / (a_i² + s))² - 1, the
+// largest root (Eberly, "Distance from a point to an ellipse, an ellipsoid, or a
+// hyperellipsoid"). F is monotone for s > -min a_i², so bisection is robust.
+double ellipsoidDistance(const Vec3& radii, const Vec3& p) {
+  const Vec3 q = p.cwiseAbs();
+  auto F = [&](double s) {
+    double sum = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double r = radii[i] * q[i] / (radii[i] * radii[i] + s);
+      sum += r * r;
+    }
+    return sum - 1.0;
+  };
+  const double minR2 = radii.cwiseAbs2().minCoeff();
+  double lo = -minR2, hi = q.norm() * radii.maxCoeff();
+  // F(lo+) may be finite when the component on the smallest axis vanishes; bisection on the
+  // bracket [lo, hi] still converges to the relevant root of the monotone branch.
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (F(mid) > 0.0) lo = mid; else hi = mid;
+  }
+  const double s = 0.5 * (lo + hi);
+  Vec3 nearest;
+  for (int i = 0; i < 3; ++i) nearest[i] = radii[i] * radii[i] * q[i] / (radii[i] * radii[i] + s);
+  // Points deep inside, near the smallest axis, are handled by the same formula except when
+  // that axis component is zero; project radially as a bound in that degenerate case.
+  const double d = (nearest - q).norm();
+  const Vec3 radial = q.cwiseQuotient(radii);
+  const double rn = radial.norm();
+  const double radialBound = rn > 0 ? (q - q / rn).norm() : radii.minCoeff();
+  return std::min(d, radialBound);
+}
+
+struct MeshBuilder {
+  TriangleMesh mesh;
+  uint32_t add(const Vec3& p) {
+    mesh.positions.push_back(p);
+    return uint32_t(mesh.positions.size() - 1);
+  }
+  void tri(uint32_t a, uint32_t b, uint32_t c) { mesh.triangles.push_back({a, b, c}); }
+};
+
+TriangleMesh icosahedron() {
+  MeshBuilder m;
+  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
+  const double s = 1.0 / std::sqrt(1.0 + phi * phi);
+  const double pts[12][3] = {{-1, phi, 0}, {1, phi, 0},   {-1, -phi, 0}, {1, -phi, 0},
+                             {0, -1, phi}, {0, 1, phi},   {0, -1, -phi}, {0, 1, -phi},
+                             {phi, 0, -1}, {phi, 0, 1},   {-phi, 0, -1}, {-phi, 0, 1}};
+  for (auto& p : pts) m.add(Vec3(p[0], p[1], p[2]) * s);
+  const uint32_t f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                             {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                             {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                             {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (auto& t : f) m.tri(t[0], t[1], t[2]);
+  return m.mesh;
+}
+
+TriangleMesh subdivideOnSphere(const TriangleMesh& in) {
+  TriangleMesh out;
+  out.positions = in.positions;
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+  auto midpoint = [&](uint32_t a, uint32_t b) {
+    auto key = std::minmax(a, b);
+    auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    out.positions.push_back((out.positions[a] + out.positions[b]).normalized());
+    const uint32_t idx = uint32_t(out.positions.size() - 1);
+    mid.emplace(key, idx);
+    return idx;
+  };
+  for (const Tri& t : in.triangles) {
+    const uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+    out.triangles.push_back({t[0], ab, ca});
+    out.triangles.push_back({t[1], bc, ab});
+    out.triangles.push_back({t[2], ca, bc});
+    out.triangles.push_back({ab, bc, ca});
+  }
+  return out;
+}
+
+void setNormals(BuiltinMesh& b, bool analytic) {
+  if (analytic && b.truth) {
+    b.mesh.normals.clear();
+    for (const Vec3& p : b.mesh.positions) b.mesh.normals.push_back(b.truth->normal(p));
+    b.mesh.normalIndices = b.mesh.triangles;
+  } else {
+    computeVertexNormals(b.mesh, NormalSource::Average);
+  }
+}
+
+// Grid over (major angle, profile angle) with wrap-around in both directions where `wrapRows`.
+TriangleMesh torusMesh(double R, double r, int seg, int rings) {
+  MeshBuilder m;
+  for (int i = 0; i < seg; ++i)
+    for (int j = 0; j < rings; ++j) {
+      const double u = 2 * kPi * i / seg, v = 2 * kPi * j / rings;
+      m.add(Vec3((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+                 r * std::sin(v)));
+    }
+  auto id = [&](int i, int j) { return uint32_t((i % seg) * rings + (j % rings)); };
+  for (int i = 0; i < seg; ++i)
+    for (int j = 0; j < rings; ++j) {
+      m.tri(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+      m.tri(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    }
+  return m.mesh;
+}
+
+TriangleMesh uvSphereMesh(int seg, int rings) {
+  MeshBuilder m;
+  const uint32_t north = m.add(Vec3(0, 0, 1));
+  for (int j = 1; j < rings; ++j)
+    for (int i = 0; i < seg; ++i) {
+      const double th = kPi * j / rings, ph = 2 * kPi * i / seg;
+      m.add(Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
+    }
+  const uint32_t south = m.add(Vec3(0, 0, -1));
+  auto id = [&](int j, int i) { return uint32_t(1 + (j - 1) * seg + (i % seg)); };
+  for (int i = 0; i < seg; ++i) m.tri(north, id(1, i), id(1, i + 1));
+  for (int j = 1; j < rings - 1; ++j)
+    for (int i = 0; i < seg; ++i) {
+      m.tri(id(j, i), id(j + 1, i), id(j + 1, i + 1));
+      m.tri(id(j, i), id(j + 1, i + 1), id(j, i + 1));
+    }
+  for (int i = 0; i < seg; ++i) m.tri(south, id(rings - 1, i + 1), id(rings - 1, i));
+  return m.mesh;
+}
+
+std::vector<double> parseNumbers(std::string_view spec, std::string_view args) {
+  std::vector<double> out;
+  while (!args.empty()) {
+    const size_t comma = args.find(',');
+    const std::string token(args.substr(0, comma));
+    try {
+      size_t used = 0;
+      out.push_back(std::stod(token, &used));
+      if (used != token.size()) throw std::invalid_argument(token);
+    } catch (const std::exception&) {
+      fail("built-in shape '{}': '{}' is not a number", spec, token);
+    }
+    if (comma == std::string_view::npos) break;
+    args.remove_prefix(comma + 1);
+  }
+  return out;
+}
+
+}  // namespace
+
+double AnalyticSurface::distance(const Vec3& p) const {
+  switch (kind) {
+    case Kind::Sphere: return std::abs(p.norm() - a);
+    case Kind::Ellipsoid: return ellipsoidDistance(Vec3(a, b, c), p);
+    case Kind::Torus: {
+      const double rho = std::hypot(p.x(), p.y()) - a;
+      return std::abs(std::hypot(rho, p.z()) - b);
+    }
+  }
+  return 0.0;
+}
+
+Vec3 AnalyticSurface::normal(const Vec3& p) const {
+  switch (kind) {
+    case Kind::Sphere: return safeNormalized(p);
+    case Kind::Ellipsoid: return safeNormalized(Vec3(p.x() / (a * a), p.y() / (b * b), p.z() / (c * c)));
+    case Kind::Torus: {
+      const double rxy = std::hypot(p.x(), p.y());
+      const Vec3 center = rxy > 0 ? Vec3(p.x() / rxy * a, p.y() / rxy * a, 0.0) : Vec3(a, 0, 0);
+      return safeNormalized(p - center);
+    }
+  }
+  return Vec3(0, 0, 1);
+}
+
+double AnalyticSurface::size() const {
+  switch (kind) {
+    case Kind::Sphere: return a;
+    case Kind::Ellipsoid: return std::max({a, b, c});
+    case Kind::Torus: return a + b;
+  }
+  return 1.0;
+}
+
+const std::vector<std::string>& builtinShapeNames() {
+  static const std::vector<std::string> names = {"triangle", "tetrahedron", "icosahedron", "icosphere",
+                                                 "uv-sphere", "ellipsoid",  "torus"};
+  return names;
+}
+
+BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
+  BuiltinMesh b;
+  const AnalyticSurface unitSphere{AnalyticSurface::Kind::Sphere, 1, 1, 1};
+  if (name == "triangle") {
+    // An equilateral triangle cut from the unit sphere 50° around the pole, carrying the sphere's
+    // normals: the thesis' single curved triangle.
+    const double th = 50.0 * kPi / 180.0;
+    for (int i = 0; i < 3; ++i) {
+      const double ph = 2 * kPi * i / 3 + kPi / 2;
+      b.mesh.positions.emplace_back(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+    }
+    b.mesh.triangles.push_back({0, 1, 2});
+    b.truth = unitSphere;
+    b.description = "spherical triangle";
+    setNormals(b, true);  // averaging one face would give a flat normal: the sphere's is the point
+    return b;
+  }
+  if (name == "tetrahedron") {
+    const double s = 1.0 / std::sqrt(3.0);
+    b.mesh.positions = {Vec3(1, 1, 1) * s, Vec3(1, -1, -1) * s, Vec3(-1, 1, -1) * s, Vec3(-1, -1, 1) * s};
+    b.mesh.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    b.truth = unitSphere;
+    b.description = "regular tetrahedron";
+  } else if (name == "icosahedron" || name == "icosphere") {
+    b.mesh = icosahedron();
+    const int level = name == "icosahedron" ? 0 : params.level;
+    if (level < 0 || level > 8) fail("icosphere level {} is out of range: expected 0 to 8", level);
+    for (int i = 0; i < level; ++i) b.mesh = subdivideOnSphere(b.mesh);
+    b.truth = unitSphere;
+    b.description = level == 0 ? "icosahedron" : fmt::format("icosphere level {}", level);
+  } else if (name == "uv-sphere") {
+    if (params.segments < 3 || params.rings < 2) fail("uv-sphere needs at least 3 segments and 2 rings");
+    b.mesh = uvSphereMesh(params.segments, params.rings);
+    b.truth = unitSphere;
+    b.description = fmt::format("uv-sphere {}x{}", params.segments, params.rings);
+  } else if (name == "ellipsoid") {
+    const Vec3& r = params.radii;
+    if (!(r.minCoeff() > 0)) fail("ellipsoid radii must be positive");
+    b.mesh = icosahedron();
+    for (int i = 0; i < params.level; ++i) b.mesh = subdivideOnSphere(b.mesh);
+    for (Vec3& p : b.mesh.positions) p = p.cwiseProduct(r);
+    b.truth = AnalyticSurface{AnalyticSurface::Kind::Ellipsoid, r.x(), r.y(), r.z()};
+    b.description = fmt::format("ellipsoid {}x{}x{} level {}", r.x(), r.y(), r.z(), params.level);
+  } else if (name == "torus") {
+    if (!(params.major > params.minor && params.minor > 0)) fail("torus needs major > minor > 0");
+    if (params.segments < 3 || params.rings < 3) fail("torus needs at least 3 segments and 3 rings");
+    b.mesh = torusMesh(params.major, params.minor, params.segments, params.rings);
+    b.truth = AnalyticSurface{AnalyticSurface::Kind::Torus, params.major, params.minor, 0};
+    b.description = fmt::format("torus R={} r={} {}x{}", params.major, params.minor, params.segments, params.rings);
+  } else {
+    fail("unknown built-in shape '{}': expected one of {}", name, fmt::join(builtinShapeNames(), ", "));
+  }
+  setNormals(b, params.analyticNormals);
+  return b;
+}
+
+std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
+  const size_t colon = spec.find(':');
+  const std::string_view name = spec.substr(0, colon);
+  const auto& names = builtinShapeNames();
+  if (std::find(names.begin(), names.end(), name) == names.end()) return std::nullopt;
+  const std::vector<double> v =
+      colon == std::string_view::npos ? std::vector<double>{} : parseNumbers(spec, spec.substr(colon + 1));
+  ShapeParams p;
+  auto need = [&](size_t lo, size_t hi) {
+    if (v.size() < lo || v.size() > hi) fail("built-in shape '{}': expected {} to {} numbers after ':'", spec, lo, hi);
+  };
+  if (name == "icosphere") {
+    need(0, 1);
+    if (!v.empty()) p.level = int(v[0]);
+  } else if (name == "uv-sphere") {
+    need(0, 2);
+    if (v.size() > 0) p.segments = int(v[0]);
+    if (v.size() > 1) p.rings = int(v[1]);
+  } else if (name == "ellipsoid") {
+    need(0, 4);
+    if (v.size() >= 3) p.radii = Vec3(v[0], v[1], v[2]);
+    else if (!v.empty()) fail("built-in shape '{}': an ellipsoid takes three radii (and a level)", spec);
+    if (v.size() == 4) p.level = int(v[3]);
+  } else if (name == "torus") {
+    need(0, 4);
+    if (v.size() >= 2) { p.major = v[0]; p.minor = v[1]; }
+    else if (!v.empty()) fail("built-in shape '{}': a torus takes R,r (and segments,rings)", spec);
+    if (v.size() >= 3) p.segments = int(v[2]);
+    if (v.size() >= 4) p.rings = int(v[3]);
+  } else {
+    need(0, 0);
+  }
+  return makeBuiltin(name, p);
+}
+
+}  // namespace quadtri

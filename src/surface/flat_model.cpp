@@ -1,0 +1,27 @@
+#include "surface/flat_model.h"
+
+#include <nlohmann/json.hpp>
+
+namespace quadtri {
+
+SurfacePoint FlatModel::evaluate(size_t t, double u, double v) const {
+  const TriangleMesh& m = mesh();
+  const Vec3 p = (1.0 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);
+  Vec3 n = m.faceNormal(t);
+  // Orient to the shading normals' side so metrics compare like with like.
+  const Vec3 ns = m.cornerNormal(t, 0) + m.cornerNormal(t, 1) + m.cornerNormal(t, 2);
+  if (n.dot(ns) < 0.0) n = -n;
+  return {p, n};
+}
+
+nlohmann::json FlatModel::patchJson(size_t t) const {
+  const TriangleMesh& m = mesh();
+  nlohmann::json j;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = m.corner(t, k);
+    j["vertices"].push_back({p.x(), p.y(), p.z()});
+  }
+  return j;
+}
+
+}  // namespace quadtri

@@ -1,0 +1,56 @@
+#include "surface/quadric_patch.h"
+
+namespace quadtri {
+
+double evalQuadric(const QuadricCoeffs& q, const Vec3& p) {
+  const double x = p.x(), y = p.y(), z = p.z();
+  return q[0] * x * x + q[1] * y * y + q[2] * z * z + q[3] * x * y + q[4] * x * z + q[5] * y * z +
+         q[6] * x + q[7] * y + q[8] * z + q[9];
+}
+
+Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p) {
+  const double x = p.x(), y = p.y(), z = p.z();
+  return Vec3(2 * q[0] * x + q[3] * y + q[4] * z + q[6], 2 * q[1] * y + q[3] * x + q[5] * z + q[7],
+              2 * q[2] * z + q[4] * x + q[5] * y + q[8]);
+}
+
+bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double tmin,
+                           double tmax, double& tHit) {
+  const QuadricCoeffs& q = patch.q;
+  const double a = q[0] * d.x() * d.x() + q[1] * d.y() * d.y() + q[2] * d.z() * d.z() +
+                   q[3] * d.x() * d.y() + q[4] * d.x() * d.z() + q[5] * d.y() * d.z();
+  const double b = quadricGradient(q, o).dot(d);
+  const double c = evalQuadric(q, o);
+  double roots[2];
+  int count = 0;
+  const double scale = std::abs(b) + std::abs(c) * 1e-300;
+  if (std::abs(a) <= 1e-14 * scale) {
+    if (b == 0.0) return false;
+    roots[count++] = -c / b;
+  } else {
+    const double disc = b * b - 4.0 * a * c;
+    if (disc < 0.0) return false;
+    const double s = std::sqrt(disc);
+    const double h = -0.5 * (b + std::copysign(s, b));
+    if (h == 0.0) {
+      roots[count++] = 0.0;
+    } else {
+      roots[count++] = h / a;
+      roots[count++] = c / h;
+    }
+    if (count == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+  }
+  for (int i = 0; i < count; ++i) {
+    const double t = roots[i];
+    if (!(t > tmin && t < tmax)) continue;
+    const Vec3 p = o + t * d;
+    if (!patch.inside(p)) continue;
+    if ((p.array() < patch.bounds.lo.array()).any() || (p.array() > patch.bounds.hi.array()).any())
+      continue;
+    tHit = t;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace quadtri

@@ -1,0 +1,149 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "math/error.h"
+#include "mesh/mesh_io.h"
+#include "mesh/normals.h"
+#include "mesh/shapes.h"
+#include "mesh/topology.h"
+
+namespace quadtri {
+namespace {
+
+TEST(Shapes, PolyhedraAreClosedAndOnTheUnitSphere) {
+  for (const char* name : {"tetrahedron", "icosahedron", "icosphere", "uv-sphere", "ellipsoid", "torus"}) {
+    const BuiltinMesh b = makeBuiltin(name);
+    MeshTopology topo(b.mesh);
+    EXPECT_TRUE(topo.isClosed()) << name;
+    // Euler characteristic: 2 for spheres, 0 for the torus.
+    const long chi = long(b.mesh.positions.size()) - long(topo.edges.size()) + long(b.mesh.triangleCount());
+    EXPECT_EQ(chi, std::string(name) == "torus" ? 0 : 2) << name;
+    ASSERT_TRUE(b.truth);
+    for (const Vec3& p : b.mesh.positions) EXPECT_LT(b.truth->distance(p), 1e-12) << name;
+    // Outward orientation: every face normal agrees with the analytic normal at its centroid.
+    for (size_t t = 0; t < b.mesh.triangleCount(); ++t) {
+      const Vec3 c = (b.mesh.corner(t, 0) + b.mesh.corner(t, 1) + b.mesh.corner(t, 2)) / 3.0;
+      EXPECT_GT(b.mesh.faceNormal(t).dot(b.truth->normal(c)), 0.0) << name << " face " << t;
+    }
+  }
+}
+
+TEST(Shapes, IcosphereTriangleCounts) {
+  for (int level = 0; level <= 3; ++level) {
+    ShapeParams p;
+    p.level = level;
+    EXPECT_EQ(makeBuiltin("icosphere", p).mesh.triangleCount(), size_t(20) << (2 * level));
+  }
+}
+
+TEST(Shapes, AverageNormalsOfRegularPolyhedraAreRadial) {
+  // Thesis eq. 2.8 on a regular polyhedron gives the circumscribed sphere's normal exactly.
+  for (const char* name : {"tetrahedron", "icosahedron"}) {
+    ShapeParams p;
+    p.analyticNormals = false;
+    const BuiltinMesh b = makeBuiltin(name, p);
+    for (size_t t = 0; t < b.mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR((b.mesh.cornerNormal(t, k) - b.mesh.corner(t, k).normalized()).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(Shapes, EllipsoidDistanceMatchesSampledMinimum) {
+  const AnalyticSurface e{AnalyticSurface::Kind::Ellipsoid, 1.0, 0.7, 0.5};
+  const Vec3 queries[] = {Vec3(1.3, 0.2, -0.1), Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 2), Vec3(-0.4, 0.9, 0.3)};
+  for (const Vec3& q : queries) {
+    double best = kInfinity;
+    for (int i = 0; i <= 400; ++i)
+      for (int j = 0; j < 800; ++j) {
+        const double th = kPi * i / 400, ph = 2 * kPi * j / 800;
+        const Vec3 s(std::sin(th) * std::cos(ph), 0.7 * std::sin(th) * std::sin(ph), 0.5 * std::cos(th));
+        best = std::min(best, (s - q).norm());
+      }
+    EXPECT_NEAR(e.distance(q), best, 2e-3) << q.transpose();
+    EXPECT_LE(e.distance(q), best + 1e-9);
+  }
+}
+
+TEST(Shapes, BuiltinSpecParsing) {
+  EXPECT_EQ(parseBuiltinSpec("icosphere:2")->mesh.triangleCount(), 320u);
+  EXPECT_EQ(parseBuiltinSpec("torus:1,0.25,12,6")->mesh.triangleCount(), 144u);
+  EXPECT_FALSE(parseBuiltinSpec("no-such-shape"));
+  EXPECT_THROW(parseBuiltinSpec("icosphere:x"), Error);
+  EXPECT_THROW(parseBuiltinSpec("torus:0.2,1"), Error);
+}
+
+class MeshIo : public ::testing::Test {
+ protected:
+  std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                              ("quadtri-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  void SetUp() override { std::filesystem::create_directories(dir); }
+  void TearDown() override { std::filesystem::remove_all(dir); }
+};
+
+TEST_F(MeshIo, ObjAndPlyRoundTripKeepPositionsNormalsAndAdjacency) {
+  const BuiltinMesh b = makeBuiltin("icosphere");
+  for (const char* ext : {".obj", ".ply"}) {
+    const auto path = dir / (std::string("sphere") + ext);
+    saveMesh(b.mesh, path);
+    const TriangleMesh m = loadMesh(path);
+    ASSERT_EQ(m.triangleCount(), b.mesh.triangleCount()) << ext;
+    EXPECT_EQ(m.positions.size(), b.mesh.positions.size()) << ext;
+    EXPECT_TRUE(MeshTopology(m).isClosed()) << ext;
+    for (size_t t = 0; t < m.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR((m.corner(t, k) - b.mesh.corner(t, k)).norm(), 0.0, 1e-6);
+        EXPECT_NEAR((m.cornerNormal(t, k) - b.mesh.cornerNormal(t, k)).norm(), 0.0, 1e-6);
+      }
+  }
+}
+
+TEST_F(MeshIo, SplitNormalsStaySplitWhilePositionsWeld) {
+  // A cube-like crease: two triangles share an edge but carry different normals there.
+  const auto path = dir / "crease.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                         "vn 0 0 -1\nvn -1 0 0\n"
+                         "f 1//1 3//1 2//1\nf 1//2 4//2 3//2\n";
+  const TriangleMesh m = loadMesh(path);
+  EXPECT_EQ(m.positions.size(), 4u);
+  ASSERT_EQ(m.triangleCount(), 2u);
+  EXPECT_EQ(m.triangles[0][0], m.triangles[1][0]);  // welded vertex 1
+  EXPECT_NEAR((m.cornerNormal(0, 0) - Vec3(0, 0, -1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.cornerNormal(1, 0) - Vec3(-1, 0, 0)).norm(), 0.0, 1e-12);
+}
+
+TEST_F(MeshIo, MissingNormalsAreComputedAndBadInputNamesTheFile) {
+  const auto path = dir / "plain.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const TriangleMesh m = loadMesh(path);
+  EXPECT_NEAR((m.cornerNormal(0, 0) - Vec3(0, 0, 1)).norm(), 0.0, 1e-12);
+  try {
+    loadMesh(dir / "missing.obj");
+    FAIL() << "no error for a missing file";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.obj"), std::string::npos);
+  }
+  const auto bad = dir / "bad.txt";
+  std::ofstream(bad) << "hello";
+  EXPECT_THROW(loadMesh(bad), Error);
+}
+
+TEST(Normals, AngleWeightedDiffersFromAverageOnIrregularFan) {
+  TriangleMesh m;
+  m.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0, 1)};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  computeVertexNormals(m, NormalSource::Average);
+  const Vec3 avg = m.cornerNormal(0, 0);
+  computeVertexNormals(m, NormalSource::Angle);
+  const Vec3 ang = m.cornerNormal(0, 0);
+  const Vec3 n1(0, 0, 1), n2 = Vec3(1, 0, 1).normalized();
+  EXPECT_NEAR((avg - (n1 + n2).normalized()).norm(), 0.0, 1e-12);
+  // Corner angles at vertex 0: 90° in the first face, the angle between +y and (-1,0,1) in
+  // the second.
+  const double a1 = kPi / 2, a2 = std::acos(Vec3(0, 1, 0).dot(Vec3(-1, 0, 1).normalized()));
+  EXPECT_NEAR((ang - (a1 * n1 + a2 * n2).normalized()).norm(), 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace quadtri
