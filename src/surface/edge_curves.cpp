@@ -1,0 +1,128 @@
+#include "surface/edge_curves.h"
+
+#include <Eigen/SVD>
+
+#include "mesh/topology.h"
+
+namespace quadtri {
+namespace {
+
+bool lexLess(const Vec3& a, const Vec3& b) {
+  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+}
+
+// Damping of the pseudo-inverse relative to the (unit) row scale: negligible where the planes
+// meet at a real angle (relative effect ~1e-14/σ²), decisive where they are parallel.
+constexpr double kDamping = 1e-7;
+// The control point may sit at most this many edge lengths from the chord midpoint.
+constexpr double kMaxOffset = 1.0;
+
+}  // namespace
+
+Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, const Vec3& njIn) {
+  // Canonical order makes the result independent of which side asks.
+  const bool swap = lexLess(vjIn, viIn) || (vjIn == viIn && lexLess(njIn, niIn));
+  const Vec3& vi = swap ? vjIn : viIn;
+  const Vec3& vj = swap ? viIn : vjIn;
+  const Vec3& ni = swap ? njIn : niIn;
+  const Vec3& nj = swap ? niIn : njIn;
+  const Vec3 e = vj - vi;
+  const double len = e.norm();
+  const Vec3 mid = 0.5 * (vi + vj);
+  if (!(len > 0.0)) return mid;
+  // b = mid + δ. Tangent planes: ni·(b - vi) = 0 and nj·(b - vj) = 0. The edge plane (eq. 4.5)
+  // has normal np = e × (e/2 + nm) = e × nm, so np·(b - vi) = 0 reduces to np·δ = 0.
+  const Vec3 nm = 0.5 * (ni + nj);
+  Vec3 np = e.cross(nm);
+  const double npLen = np.norm();
+  np = npLen > 1e-9 * len ? Vec3(np / npLen) : Vec3::Zero();
+  Mat3 M;
+  M.row(0) = ni.transpose();
+  M.row(1) = nj.transpose();
+  M.row(2) = np.transpose();
+  const Vec3 r(-0.5 * ni.dot(e), 0.5 * nj.dot(e), 0.0);
+  Eigen::JacobiSVD<Mat3> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Vec3 s = svd.singularValues();
+  const double mu2 = kDamping * kDamping;
+  Vec3 delta = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const double g = s[k] / (s[k] * s[k] + mu2);
+    delta += g * svd.matrixU().col(k).dot(r) * svd.matrixV().col(k);
+  }
+  const double dl = delta.norm();
+  if (!std::isfinite(dl)) return mid;
+  if (dl > kMaxOffset * len) delta *= kMaxOffset * len / dl;
+  return mid + delta;
+}
+
+std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh) {
+  const MeshTopology topo(mesh);
+  std::vector<std::array<Vec3, 3>> out(mesh.triangleCount());
+  for (const Edge& edge : topo.edges) {
+    Vec3 na = Vec3::Zero(), nb = Vec3::Zero();
+    for (auto [t, k] : edge.sides) {
+      const bool forward = mesh.triangles[t][k] == edge.a;
+      na += mesh.cornerNormal(t, forward ? k : (k + 1) % 3);
+      nb += mesh.cornerNormal(t, forward ? (k + 1) % 3 : k);
+    }
+    const Vec3& va = mesh.positions[edge.a];
+    const Vec3& vb = mesh.positions[edge.b];
+    // With a single side (or no split) the mean is the corner normal itself: keep it exact.
+    const auto [t0, k0] = edge.sides.front();
+    const bool f0 = mesh.triangles[t0][k0] == edge.a;
+    const Vec3 na0 = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
+    const Vec3 nb0 = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
+    bool split = false;
+    for (auto [t, k] : edge.sides) {
+      const bool forward = mesh.triangles[t][k] == edge.a;
+      split |= mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na0;
+      split |= mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb0;
+    }
+    const Vec3 b = split ? edgeControlPoint(va, safeNormalized(na, na0), vb, safeNormalized(nb, nb0))
+                         : edgeControlPoint(va, na0, vb, nb0);
+    for (auto [t, k] : edge.sides) out[t][k] = b;
+  }
+  return out;
+}
+
+std::array<Vec3, 6> QuadraticPatch::coefficients() const {
+  // f = Σ λi² vi + 2 Σ λiλj bij with λ = (1-u-v, u, v), expanded in monomials.
+  const Vec3 &b01 = b[0], &b12 = b[1], &b20 = b[2];
+  return {v[0],                                       // c0
+          2.0 * (b20 - v[0]),                         // c1 (v)
+          2.0 * (b01 - v[0]),                         // c2 (u)
+          2.0 * (v[0] - b01 - b20 + b12),             // c3 (uv)
+          v[0] + v[2] - 2.0 * b20,                    // c4 (v²)
+          v[0] + v[1] - 2.0 * b01};                   // c5 (u²)
+}
+
+Vec3 QuadraticPatch::position(double u, double w) const {
+  const double l0 = 1.0 - u - w, l1 = u, l2 = w;
+  return l0 * l0 * v[0] + l1 * l1 * v[1] + l2 * l2 * v[2] + 2.0 * l0 * l1 * b[0] +
+         2.0 * l1 * l2 * b[1] + 2.0 * l2 * l0 * b[2];
+}
+
+void QuadraticPatch::derivatives(double u, double w, Vec3& du, Vec3& dv) const {
+  const double l0 = 1.0 - u - w, l1 = u, l2 = w;
+  // ∂/∂u moves weight from λ0 to λ1; ∂/∂v from λ0 to λ2.
+  du = 2.0 * (l1 * v[1] - l0 * v[0] + (l0 - l1) * b[0] + l2 * b[1] - l2 * b[2]);
+  dv = 2.0 * (l2 * v[2] - l0 * v[0] - l1 * b[0] + l1 * b[1] + (l0 - l2) * b[2]);
+}
+
+Vec3 QuadraticPatch::edgePoint(int k, double t) const {
+  const Vec3& a = v[k];
+  const Vec3& c = v[(k + 1) % 3];
+  return (1 - t) * (1 - t) * a + 2 * t * (1 - t) * b[k] + t * t * c;
+}
+
+QuadraticPatch quadraticPatch(const TriangleMesh& mesh, const std::vector<std::array<Vec3, 3>>& controlPoints,
+                              size_t t) {
+  return QuadraticPatch{{mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)}, controlPoints[t]};
+}
+
+double patchOrientation(const TriangleMesh& mesh, size_t t) {
+  const Vec3 ns = mesh.cornerNormal(t, 0) + mesh.cornerNormal(t, 1) + mesh.cornerNormal(t, 2);
+  return mesh.faceCross(t).dot(ns) < 0.0 ? -1.0 : 1.0;
+}
+
+}  // namespace quadtri
