@@ -1,0 +1,145 @@
+#include "surface/tessellate.h"
+
+#include <unordered_map>
+
+#include "math/error.h"
+#include "mesh/topology.h"
+
+namespace quadtri {
+namespace {
+
+// Where a sample point of a patch lies: at a mesh corner, on a mesh edge at step `step` of
+// `steps` from corner `from` to corner `to`, or inside the patch.
+struct PointSite {
+  enum class Kind { Corner, Edge, Interior } kind = Kind::Interior;
+  int corner = 0;      // Corner
+  int edge = 0;        // Edge: local edge k joins corners k and k+1
+  int step = 0;        // Edge: steps from corner k towards corner k+1
+};
+
+// The parameter points of one patch and the local triangles over them.
+struct PatchPattern {
+  std::vector<Vec2> uv;
+  std::vector<PointSite> sites;
+  std::vector<Tri> triangles;
+  int edgeSteps = 0;  // points along each edge, minus one
+};
+
+PatchPattern latticePattern(int n) {
+  PatchPattern p;
+  p.edgeSteps = n;
+  std::vector<std::vector<uint32_t>> id(n + 1, std::vector<uint32_t>(n + 1));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i + j <= n; ++i) {
+      PointSite s;
+      if (i == 0 && j == 0) s = {PointSite::Kind::Corner, 0, 0, 0};
+      else if (i == n) s = {PointSite::Kind::Corner, 1, 0, 0};
+      else if (j == n) s = {PointSite::Kind::Corner, 2, 0, 0};
+      else if (j == 0) s = {PointSite::Kind::Edge, 0, 0, i};
+      else if (i + j == n) s = {PointSite::Kind::Edge, 0, 1, j};
+      else if (i == 0) s = {PointSite::Kind::Edge, 0, 2, n - j};
+      id[i][j] = uint32_t(p.uv.size());
+      p.uv.emplace_back(double(i) / n, double(j) / n);
+      p.sites.push_back(s);
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i + j < n; ++i) {
+      p.triangles.push_back({id[i][j], id[i + 1][j], id[i][j + 1]});
+      if (i + j + 1 < n) p.triangles.push_back({id[i + 1][j], id[i + 1][j + 1], id[i][j + 1]});
+    }
+  return p;
+}
+
+// The thesis' m×m uv grid (m = 50: 2500 points, 2(m-1)² = 4802 triangles), mapped onto the
+// triangle by (u, v) = (s(1-t), t): the t = 1 row collapses onto corner 2, so the triangles of
+// the last strip that have two corners there are degenerate (m-1 of them). They are kept so
+// the primitive count is the thesis' own.
+PatchPattern thesisGridPattern(int m) {
+  PatchPattern p;
+  const int n = m - 1;
+  p.edgeSteps = n;
+  for (int b = 0; b <= n; ++b)
+    for (int a = 0; a <= n; ++a) {
+      const double s = double(a) / n, t = double(b) / n;
+      PointSite site;
+      if (b == n) site = {PointSite::Kind::Corner, 2, 0, 0};
+      else if (a == 0 && b == 0) site = {PointSite::Kind::Corner, 0, 0, 0};
+      else if (a == n && b == 0) site = {PointSite::Kind::Corner, 1, 0, 0};
+      else if (b == 0) site = {PointSite::Kind::Edge, 0, 0, a};
+      else if (a == n) site = {PointSite::Kind::Edge, 0, 1, b};
+      else if (a == 0) site = {PointSite::Kind::Edge, 0, 2, n - b};
+      p.uv.emplace_back(s * (1.0 - t), t);
+      p.sites.push_back(site);
+    }
+  auto id = [&](int a, int b) { return uint32_t(b * (n + 1) + a); };
+  for (int b = 0; b < n; ++b)
+    for (int a = 0; a < n; ++a) {
+      p.triangles.push_back({id(a, b), id(a + 1, b), id(a + 1, b + 1)});
+      p.triangles.push_back({id(a, b), id(a + 1, b + 1), id(a, b + 1)});
+    }
+  return p;
+}
+
+}  // namespace
+
+Tessellation Tessellation::parse(const std::string& text) {
+  if (text == "thesis") return thesis();
+  try {
+    size_t used = 0;
+    const int level = std::stoi(text, &used);
+    if (used == text.size() && level >= 1 && level <= 256) return {Kind::Lattice, level};
+  } catch (const std::exception&) {
+  }
+  fail("tessellation '{}': expected a lattice level from 1 to 256, or 'thesis'", text);
+}
+
+size_t Tessellation::trianglesPerPatch() const {
+  return kind == Kind::ThesisGrid ? size_t(2 * (level - 1) * (level - 1)) : size_t(level * level);
+}
+
+TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellation) {
+  const TriangleMesh& mesh = model.mesh();
+  if (model.representation() == Representation::InputTriangles) return mesh;
+  const PatchPattern pattern = tessellation.kind == Tessellation::Kind::ThesisGrid
+                                   ? thesisGridPattern(tessellation.level)
+                                   : latticePattern(tessellation.level);
+  const bool weld = model.sharesEdges();
+  const MeshTopology topo(mesh);
+  const int steps = pattern.edgeSteps;
+  TriangleMesh out;
+  out.positions.reserve(mesh.triangleCount() * pattern.uv.size() / (weld ? 2 : 1));
+  std::vector<uint32_t> cornerVertex(weld ? mesh.positions.size() : 0, ~0u);
+  // Welded edge points: per mesh edge, `steps - 1` interior points from endpoint a to b.
+  std::vector<uint32_t> edgeVertex(weld ? topo.edges.size() * size_t(steps - 1) : 0, ~0u);
+  std::vector<uint32_t> local(pattern.uv.size());
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    for (size_t i = 0; i < pattern.uv.size(); ++i) {
+      const PointSite& s = pattern.sites[i];
+      uint32_t* slot = nullptr;
+      if (weld && s.kind == PointSite::Kind::Corner) {
+        slot = &cornerVertex[mesh.triangles[t][s.corner]];
+      } else if (weld && s.kind == PointSite::Kind::Edge) {
+        const uint32_t e = topo.edgeOf[t][s.edge];
+        const bool fromA = mesh.triangles[t][s.edge] == topo.edges[e].a;
+        const int step = fromA ? s.step : steps - s.step;
+        slot = &edgeVertex[size_t(e) * (steps - 1) + size_t(step - 1)];
+      }
+      if (slot && *slot != ~0u) {
+        local[i] = *slot;
+        continue;
+      }
+      SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
+      // Corners are the mesh's own vertices, bit for bit.
+      if (s.kind == PointSite::Kind::Corner) sp.position = mesh.corner(t, s.corner);
+      local[i] = uint32_t(out.positions.size());
+      out.positions.push_back(sp.position);
+      out.normals.push_back(safeNormalized(sp.normal, mesh.faceNormal(t)));
+      if (slot) *slot = local[i];
+    }
+    for (const Tri& tri : pattern.triangles) out.triangles.push_back({local[tri[0]], local[tri[1]], local[tri[2]]});
+  }
+  out.normalIndices = out.triangles;
+  return out;
+}
+
+}  // namespace quadtri
