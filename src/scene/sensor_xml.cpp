@@ -20,7 +20,7 @@ namespace quadtri {
 
 namespace {
 
-/// Largest image side accepted: beyond it width·height overflows the renderer's pixel indices.
+/// Largest image side accepted, so that width·height stays within a 32-bit pixel index.
 constexpr long long kMaxImageSide = 1 << 15;
 
 void checkType(const ObjectProperties& props, std::string_view expected) {
