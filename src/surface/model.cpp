@@ -5,6 +5,9 @@
 #include "math/error.h"
 #include "surface/flat_model.h"
 #include "surface/implicit_model.h"
+#include "surface/nagata_model.h"
+#include "surface/phong_model.h"
+#include "surface/pn_model.h"
 #include "surface/quadric_patch.h"
 
 namespace quadtri {
@@ -19,6 +22,9 @@ const std::vector<std::string>& modelNames() {
       "flat",
       "shading",
       "quadric-implicit",
+      "phong",
+      "pn",
+      "nagata",
   };
   return names;
 }
@@ -27,6 +33,9 @@ std::unique_ptr<SurfaceModel> makeModel(std::string_view name, std::shared_ptr<c
   if (name == "flat") return std::make_unique<FlatModel>(std::move(mesh), false);
   if (name == "shading") return std::make_unique<FlatModel>(std::move(mesh), true);
   if (name == "quadric-implicit") return std::make_unique<ImplicitModel>(std::move(mesh));
+  if (name == "phong") return std::make_unique<PhongModel>(std::move(mesh));
+  if (name == "pn") return std::make_unique<PnModel>(std::move(mesh));
+  if (name == "nagata") return std::make_unique<NagataModel>(std::move(mesh));
   fail("unknown model '{}': expected one of {}", name, fmt::join(modelNames(), ", "));
 }
 
