@@ -14,9 +14,9 @@ namespace quadtri {
 struct BsdfSample {
   Vec3 wo;
   Color weight;
-  double pdf = 0.0;      ///< solid-angle density; for delta lobes the discrete probability
-  bool delta = false;    ///< sampled from a Dirac lobe (eval/pdf are zero for such directions)
-  double eta = 1.0;      ///< relative IOR crossed (1 for reflection), for Russian roulette
+  double pdf = 0.0;    ///< solid-angle density; for delta lobes the discrete probability
+  bool delta = false;  ///< sampled from a Dirac lobe (eval/pdf are zero for such directions)
+  double eta = 1.0;    ///< relative IOR crossed (1 for reflection), for Russian roulette
 };
 
 class Bsdf {
