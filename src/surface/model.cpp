@@ -3,7 +3,9 @@
 #include <fmt/ranges.h>
 
 #include "math/error.h"
+#include "surface/edges_model.h"
 #include "surface/flat_model.h"
+#include "surface/param_model.h"
 #include "surface/quadric_patch.h"
 
 namespace quadtri {
@@ -14,13 +16,20 @@ const std::vector<QuadricPatch>& SurfaceModel::quadricPatches() const {
 }
 
 const std::vector<std::string>& modelNames() {
-  static const std::vector<std::string> names = {"flat", "shading"};
+  static const std::vector<std::string> names = {
+      "flat", "shading", "quadric-edges", "quadric-param", "quadric-edges-eq42",
+  };
   return names;
 }
 
 std::unique_ptr<SurfaceModel> makeModel(std::string_view name, std::shared_ptr<const TriangleMesh> mesh) {
   if (name == "flat") return std::make_unique<FlatModel>(std::move(mesh), false);
   if (name == "shading") return std::make_unique<FlatModel>(std::move(mesh), true);
+  if (name == "quadric-edges")
+    return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::Transfinite);
+  if (name == "quadric-param") return std::make_unique<ParamModel>(std::move(mesh));
+  if (name == "quadric-edges-eq42")
+    return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::ThesisEq42);
   fail("unknown model '{}': expected one of {}", name, fmt::join(modelNames(), ", "));
 }
 
