@@ -3,23 +3,12 @@
 #include <fmt/core.h>
 
 #include <chrono>
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "io/atomic_file.h"
-#include "math/error.h"
 #include "mesh/mesh_io.h"
-#include "surface/model.h"
-#include "surface/tessellate.h"
+#include "surface/convert_output.h"
 
 namespace quadtri::cli {
-namespace {
-
-std::string tessellationText(const Tessellation& t) {
-  return t.kind == Tessellation::Kind::ThesisGrid ? "thesis" : std::to_string(t.level);
-}
-
-}  // namespace
 
 Action addConvertCommand(CLI::App& app) {
   struct Options {
@@ -48,37 +37,18 @@ Action addConvertCommand(CLI::App& app) {
       ->capture_default_str();
   return [opt]() {
     const Tessellation tessellation = Tessellation::parse(opt->tessellation);
-    const std::filesystem::path output = opt->output;
-    const std::string ext = output.extension().string();
-    if (ext != ".obj" && ext != ".ply" && ext != ".json")
-      fail("{}: unknown output extension '{}': expected .obj, .ply or .json", opt->output, ext);
     BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals));
-    input.mesh.validate(opt->mesh);
     auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<SurfaceModel> model = makeModel(opt->model, mesh);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (ext == ".json") {
-      nlohmann::json j;
-      j["model"] = opt->model;
-      j["triangles"] = mesh->triangleCount();
-      j["tessellation"] = tessellationText(tessellation);
-      j["patches"] = nlohmann::json::array();
-      for (size_t t = 0; t < model->patchCount(); ++t) j["patches"].push_back(model->patchJson(t));
-      writeTextFile(output, j.dump() + "\n");
-      fmt::print("{}: {} model of {} ({} triangles, {} patches, converted in {:.3f} s)\n",
-                 opt->output, opt->model, input.description, mesh->triangleCount(),
-                 model->patchCount(), seconds);
-    } else {
-      const TriangleMesh out = tessellate(*model, tessellation);
-      saveMesh(out, output);
-      fmt::print(
-          "{}: {} model of {} ({} triangles -> {} vertices, {} triangles, tessellation {}, "
-          "converted in {:.3f} s)\n",
-          opt->output, opt->model, input.description, mesh->triangleCount(), out.positions.size(),
-          out.triangleCount(), tessellationText(tessellation), seconds);
-    }
+    const size_t written = writeConversion(*model, tessellation, opt->output);
+    const std::string what = written > 0 ? fmt::format("{} triangles, tessellation {}", written,
+                                                       tessellationName(tessellation))
+                                         : fmt::format("{} patches", model->patchCount());
+    fmt::print("{}: {} model of {} ({} input triangles -> {}; converted in {:.3f} s)\n",
+               opt->output, opt->model, input.description, mesh->triangleCount(), what, seconds);
     return 0;
   };
 }
