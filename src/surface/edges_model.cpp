@@ -2,8 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "surface/param_model.h"
-#include "surface/patch_normal.h"
+#include "surface/local_patches.h"
 
 namespace quadtri {
 namespace {
@@ -53,7 +52,7 @@ Vec3 thesisEq42(const QuadraticPatch& p, double up, double vp, Vec3& dup, Vec3& 
 
 nlohmann::json curveJson(const EdgeCurve& c) {
   nlohmann::json j;
-  for (const Vec3& coefficient : c.coefficients()) j.push_back(pointJson(coefficient));
+  for (const Vec3& coefficient : c.coefficients()) j.push_back(vecJson(coefficient));
   return j;
 }
 
@@ -95,9 +94,9 @@ SurfacePoint EdgesModel::evaluate(size_t t, double u, double v) const {
 nlohmann::json EdgesModel::patchJson(size_t t) const {
   const QuadraticPatch p = edges(t);
   nlohmann::json j;
-  for (const Vec3& corner : p.v) j["vertices"].push_back(pointJson(corner));
+  for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
   j["control_points"] = {
-      {"b01", pointJson(p.b[0])}, {"b12", pointJson(p.b[1])}, {"b20", pointJson(p.b[2])}};
+      {"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
   const auto [fu, fv, fw] = thesisEdgeCurves(p);
   j["edge_curves"] = {{"f_u", curveJson(fu)}, {"f_v", curveJson(fv)}, {"f_w", curveJson(fw)}};
   return j;

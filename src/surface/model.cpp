@@ -17,7 +17,11 @@ const std::vector<QuadricPatch>& SurfaceModel::quadricPatches() const {
 
 const std::vector<std::string>& modelNames() {
   static const std::vector<std::string> names = {
-      "flat", "shading", "quadric-edges", "quadric-param", "quadric-edges-eq42",
+      "flat",
+      "shading",
+      "quadric-edges",
+      "quadric-param",
+      "quadric-edges-eq42",
   };
   return names;
 }

@@ -4,13 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "surface/patch_normal.h"
+#include "surface/local_patches.h"
 
 namespace quadtri {
-
-nlohmann::json pointJson(const Vec3& p) {
-  return {p.x(), p.y(), p.z()};
-}
 
 ParamModel::ParamModel(std::shared_ptr<const TriangleMesh> mesh)
     : SurfaceModel(std::move(mesh)), controlPoints_(edgeControlPoints(this->mesh())) {}
@@ -25,11 +21,11 @@ SurfacePoint ParamModel::evaluate(size_t t, double u, double v) const {
 nlohmann::json ParamModel::patchJson(size_t t) const {
   const QuadraticPatch p = patch(t);
   nlohmann::json j;
-  for (const Vec3& corner : p.v) j["vertices"].push_back(pointJson(corner));
+  for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
   j["control_points"] = {
-      {"b01", pointJson(p.b[0])}, {"b12", pointJson(p.b[1])}, {"b20", pointJson(p.b[2])}};
+      {"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
   const std::array<Vec3, 6> c = p.coefficients();
-  for (int k = 0; k < 6; ++k) j["coefficients"][fmt::format("c{}", k)] = pointJson(c[k]);
+  for (int k = 0; k < 6; ++k) j["coefficients"][fmt::format("c{}", k)] = vecJson(c[k]);
   return j;
 }
 

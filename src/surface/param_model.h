@@ -30,7 +30,4 @@ class ParamModel final : public SurfaceModel {
   std::vector<std::array<Vec3, 3>> controlPoints_;
 };
 
-/// [x, y, z] for JSON output.
-nlohmann::json pointJson(const Vec3& p);
-
 }  // namespace quadtri
