@@ -103,12 +103,12 @@ std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh) {
 std::array<Vec3, 6> QuadraticPatch::coefficients() const {
   // f = Σ λi² vi + 2 Σ λiλj bij with λ = (1-u-v, u, v), expanded in monomials.
   const Vec3 &b01 = b[0], &b12 = b[1], &b20 = b[2];
-  return {v[0],                                       // c0
-          2.0 * (b20 - v[0]),                         // c1 (v)
-          2.0 * (b01 - v[0]),                         // c2 (u)
-          2.0 * (v[0] - b01 - b20 + b12),             // c3 (uv)
-          v[0] + v[2] - 2.0 * b20,                    // c4 (v²)
-          v[0] + v[1] - 2.0 * b01};                   // c5 (u²)
+  return {v[0],                            // c0
+          2.0 * (b20 - v[0]),              // c1 (v)
+          2.0 * (b01 - v[0]),              // c2 (u)
+          2.0 * (v[0] - b01 - b20 + b12),  // c3 (uv)
+          v[0] + v[2] - 2.0 * b20,         // c4 (v²)
+          v[0] + v[1] - 2.0 * b01};        // c5 (u²)
 }
 
 Vec3 QuadraticPatch::position(double u, double w) const {
@@ -130,9 +130,10 @@ Vec3 QuadraticPatch::edgePoint(int k, double t) const {
   return (1 - t) * (1 - t) * a + 2 * t * (1 - t) * b[k] + t * t * c;
 }
 
-QuadraticPatch quadraticPatch(const TriangleMesh& mesh, const std::vector<std::array<Vec3, 3>>& controlPoints,
-                              size_t t) {
-  return QuadraticPatch{{mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)}, controlPoints[t]};
+QuadraticPatch quadraticPatch(const TriangleMesh& mesh,
+                              const std::vector<std::array<Vec3, 3>>& controlPoints, size_t t) {
+  return QuadraticPatch{{mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)},
+                        controlPoints[t]};
 }
 
 double patchOrientation(const TriangleMesh& mesh, size_t t) {
