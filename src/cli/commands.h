@@ -8,6 +8,7 @@ namespace quadtri::cli {
 
 using Action = std::function<int()>;
 
+Action addConvertCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);
 
 }  // namespace quadtri::cli

@@ -1,6 +1,9 @@
 #include "surface/edge_curves.h"
 
-#include <Eigen/SVD>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/QR>
 
 #include "mesh/topology.h"
 
@@ -16,6 +19,31 @@ bool lexLess(const Vec3& a, const Vec3& b) {
 constexpr double kDamping = 1e-7;
 // The control point may sit at most this many edge lengths from the chord midpoint.
 constexpr double kMaxOffset = 1.0;
+
+// The control point of one mesh edge, from the normals its triangles share (see the header).
+Vec3 sharedEdgeControlPoint(const TriangleMesh& mesh, const Edge& edge) {
+  Vec3 na = Vec3::Zero(), nb = Vec3::Zero();
+  for (auto [t, k] : edge.sides) {
+    const bool forward = mesh.triangles[t][k] == edge.a;
+    na += mesh.cornerNormal(t, forward ? k : (k + 1) % 3);
+    nb += mesh.cornerNormal(t, forward ? (k + 1) % 3 : k);
+  }
+  const Vec3& va = mesh.positions[edge.a];
+  const Vec3& vb = mesh.positions[edge.b];
+  // With a single side (or no split) the mean is the corner normal itself: keep it exact.
+  const auto [t0, k0] = edge.sides.front();
+  const bool f0 = mesh.triangles[t0][k0] == edge.a;
+  const Vec3 na0 = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
+  const Vec3 nb0 = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
+  bool split = false;
+  for (auto [t, k] : edge.sides) {
+    const bool forward = mesh.triangles[t][k] == edge.a;
+    split |= mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na0;
+    split |= mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb0;
+  }
+  return split ? edgeControlPoint(va, safeNormalized(na, na0), vb, safeNormalized(nb, nb0))
+               : edgeControlPoint(va, na0, vb, nb0);
+}
 
 }  // namespace
 
@@ -41,14 +69,16 @@ Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, cons
   M.row(1) = nj.transpose();
   M.row(2) = np.transpose();
   const Vec3 r(-0.5 * ni.dot(e), 0.5 * nj.dot(e), 0.0);
-  Eigen::JacobiSVD<Mat3> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vec3 s = svd.singularValues();
-  const double mu2 = kDamping * kDamping;
-  Vec3 delta = Vec3::Zero();
-  for (int k = 0; k < 3; ++k) {
-    const double g = s[k] / (s[k] * s[k] + mu2);
-    delta += g * svd.matrixU().col(k).dot(r) * svd.matrixV().col(k);
-  }
+  // The damped pseudo-inverse solution Σ_k σ_k/(σ_k² + μ²) (u_k·r) v_k is the Tikhonov
+  // minimiser of |Mδ − r|² + μ²|δ|², i.e. the least-squares solution of [M; μI] δ = [r; 0].
+  // Householder QR of that 6×3 matrix computes it as accurately as an SVD of M (no normal
+  // equations, so the condition number is not squared) at less than half the cost.
+  Eigen::Matrix<double, 6, 3> A;
+  A.topRows<3>() = M;
+  A.bottomRows<3>() = kDamping * Mat3::Identity();
+  Eigen::Matrix<double, 6, 1> rhs;
+  rhs << r, 0.0, 0.0, 0.0;
+  Vec3 delta = A.householderQr().solve(rhs);
   const double dl = delta.norm();
   if (!std::isfinite(dl)) return mid;
   if (dl > kMaxOffset * len) delta *= kMaxOffset * len / dl;
@@ -58,42 +88,27 @@ Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, cons
 std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh) {
   const MeshTopology topo(mesh);
   std::vector<std::array<Vec3, 3>> out(mesh.triangleCount());
-  for (const Edge& edge : topo.edges) {
-    Vec3 na = Vec3::Zero(), nb = Vec3::Zero();
-    for (auto [t, k] : edge.sides) {
-      const bool forward = mesh.triangles[t][k] == edge.a;
-      na += mesh.cornerNormal(t, forward ? k : (k + 1) % 3);
-      nb += mesh.cornerNormal(t, forward ? (k + 1) % 3 : k);
-    }
-    const Vec3& va = mesh.positions[edge.a];
-    const Vec3& vb = mesh.positions[edge.b];
-    // With a single side (or no split) the mean is the corner normal itself: keep it exact.
-    const auto [t0, k0] = edge.sides.front();
-    const bool f0 = mesh.triangles[t0][k0] == edge.a;
-    const Vec3 na0 = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
-    const Vec3 nb0 = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
-    bool split = false;
-    for (auto [t, k] : edge.sides) {
-      const bool forward = mesh.triangles[t][k] == edge.a;
-      split |= mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na0;
-      split |= mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb0;
-    }
-    const Vec3 b = split ? edgeControlPoint(va, safeNormalized(na, na0), vb, safeNormalized(nb, nb0))
-                         : edgeControlPoint(va, na0, vb, nb0);
-    for (auto [t, k] : edge.sides) out[t][k] = b;
-  }
+  // Each edge writes only its own sides' slots, so edges are independent and the result does
+  // not depend on the thread count.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      for (size_t e = range.begin(); e != range.end(); ++e) {
+                        const Vec3 b = sharedEdgeControlPoint(mesh, topo.edges[e]);
+                        for (auto [t, k] : topo.edges[e].sides) out[t][k] = b;
+                      }
+                    });
   return out;
 }
 
 std::array<Vec3, 6> QuadraticPatch::coefficients() const {
   // f = Σ λi² vi + 2 Σ λiλj bij with λ = (1-u-v, u, v), expanded in monomials.
   const Vec3 &b01 = b[0], &b12 = b[1], &b20 = b[2];
-  return {v[0],                                       // c0
-          2.0 * (b20 - v[0]),                         // c1 (v)
-          2.0 * (b01 - v[0]),                         // c2 (u)
-          2.0 * (v[0] - b01 - b20 + b12),             // c3 (uv)
-          v[0] + v[2] - 2.0 * b20,                    // c4 (v²)
-          v[0] + v[1] - 2.0 * b01};                   // c5 (u²)
+  return {v[0],                            // c0
+          2.0 * (b20 - v[0]),              // c1 (v)
+          2.0 * (b01 - v[0]),              // c2 (u)
+          2.0 * (v[0] - b01 - b20 + b12),  // c3 (uv)
+          v[0] + v[2] - 2.0 * b20,         // c4 (v²)
+          v[0] + v[1] - 2.0 * b01};        // c5 (u²)
 }
 
 Vec3 QuadraticPatch::position(double u, double w) const {
@@ -115,9 +130,10 @@ Vec3 QuadraticPatch::edgePoint(int k, double t) const {
   return (1 - t) * (1 - t) * a + 2 * t * (1 - t) * b[k] + t * t * c;
 }
 
-QuadraticPatch quadraticPatch(const TriangleMesh& mesh, const std::vector<std::array<Vec3, 3>>& controlPoints,
-                              size_t t) {
-  return QuadraticPatch{{mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)}, controlPoints[t]};
+QuadraticPatch quadraticPatch(const TriangleMesh& mesh,
+                              const std::vector<std::array<Vec3, 3>>& controlPoints, size_t t) {
+  return QuadraticPatch{{mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)},
+                        controlPoints[t]};
 }
 
 double patchOrientation(const TriangleMesh& mesh, size_t t) {

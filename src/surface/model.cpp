@@ -3,9 +3,11 @@
 #include <fmt/ranges.h>
 
 #include "math/error.h"
+#include "surface/edges_model.h"
 #include "surface/flat_model.h"
 #include "surface/implicit_model.h"
 #include "surface/nagata_model.h"
+#include "surface/param_model.h"
 #include "surface/phong_model.h"
 #include "surface/pn_model.h"
 #include "surface/quadric_patch.h"
@@ -21,7 +23,10 @@ const std::vector<std::string>& modelNames() {
   static const std::vector<std::string> names = {
       "flat",
       "shading",
+      "quadric-edges",
+      "quadric-param",
       "quadric-implicit",
+      "quadric-edges-eq42",
       "phong",
       "pn",
       "nagata",
@@ -32,7 +37,12 @@ const std::vector<std::string>& modelNames() {
 std::unique_ptr<SurfaceModel> makeModel(std::string_view name, std::shared_ptr<const TriangleMesh> mesh) {
   if (name == "flat") return std::make_unique<FlatModel>(std::move(mesh), false);
   if (name == "shading") return std::make_unique<FlatModel>(std::move(mesh), true);
+  if (name == "quadric-edges")
+    return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::Transfinite);
+  if (name == "quadric-param") return std::make_unique<ParamModel>(std::move(mesh));
   if (name == "quadric-implicit") return std::make_unique<ImplicitModel>(std::move(mesh));
+  if (name == "quadric-edges-eq42")
+    return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::ThesisEq42);
   if (name == "phong") return std::make_unique<PhongModel>(std::move(mesh));
   if (name == "pn") return std::make_unique<PnModel>(std::move(mesh));
   if (name == "nagata") return std::make_unique<NagataModel>(std::move(mesh));

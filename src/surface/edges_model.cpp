@@ -1,0 +1,105 @@
+#include "surface/edges_model.h"
+
+#include <nlohmann/json.hpp>
+
+#include "surface/local_patches.h"
+
+namespace quadtri {
+namespace {
+
+// The edge curve from corner i to corner j of a patch: edge i forwards or edge j backwards.
+EdgeCurve curve(const QuadraticPatch& p, int i, int j) {
+  if (j == (i + 1) % 3) return {p.v[i], p.b[i], p.v[j]};
+  return {p.v[i], p.b[j], p.v[j]};
+}
+
+// Transfinite interpolant and its partial derivatives. Treating λ0, λ1, λ2 as independent,
+// ∂P/∂λ_m = g_m + Σ_{i≠m} λ_i e_im'(λ_m) with g_m = e_mj(λ_j) + e_mk(λ_k) − v_m; then
+// p_u = ∂P/∂λ1 − ∂P/∂λ0 and p_v = ∂P/∂λ2 − ∂P/∂λ0 since λ0 = 1-u-v.
+Vec3 transfinite(const QuadraticPatch& p, double u, double v, Vec3& pu, Vec3& pv) {
+  const std::array<double, 3> l = {1.0 - u - v, u, v};
+  std::array<Vec3, 3> dl;
+  Vec3 pos = Vec3::Zero();
+  for (int m = 0; m < 3; ++m) {
+    const int j = (m + 1) % 3, k = (m + 2) % 3;
+    const Vec3 g = curve(p, m, j).at(l[j]) + curve(p, m, k).at(l[k]) - p.v[m];
+    pos += l[m] * g;
+    dl[m] = g + l[j] * curve(p, j, m).tangent(l[m]) + l[k] * curve(p, k, m).tangent(l[m]);
+  }
+  pu = dl[1] - dl[0];
+  pv = dl[2] - dl[0];
+  return pos;
+}
+
+// The thesis' eq. 4.2 in its own coordinates (u', v'), w = 1-u'-v':
+//   P = u'A + v'B + wC, A = f_u(v') + f_w(1-w) − v0, B = f_v(w) + f_u(1-u') − v2,
+//   C = f_w(u') + f_v(1-v') − v1.
+// With ∂w/∂u' = ∂w/∂v' = −1:
+//   ∂P/∂u' = A − C + u' f_w'(1-w) − v'(f_v'(w) + f_u'(1-u')) + w f_w'(u')
+//   ∂P/∂v' = B − C + u'(f_u'(v') + f_w'(1-w)) − v' f_v'(w) − w f_v'(1-v')
+Vec3 thesisEq42(const QuadraticPatch& p, double up, double vp, Vec3& dup, Vec3& dvp) {
+  const auto [fu, fv, fw] = thesisEdgeCurves(p);
+  const double w = 1.0 - up - vp;
+  const Vec3 A = fu.at(vp) + fw.at(1.0 - w) - p.v[0];
+  const Vec3 B = fv.at(w) + fu.at(1.0 - up) - p.v[2];
+  const Vec3 C = fw.at(up) + fv.at(1.0 - vp) - p.v[1];
+  dup = A - C + up * fw.tangent(1.0 - w) - vp * (fv.tangent(w) + fu.tangent(1.0 - up)) +
+        w * fw.tangent(up);
+  dvp = B - C + up * (fu.tangent(vp) + fw.tangent(1.0 - w)) - vp * fv.tangent(w) -
+        w * fv.tangent(1.0 - vp);
+  return up * A + vp * B + w * C;
+}
+
+nlohmann::json curveJson(const EdgeCurve& c) {
+  nlohmann::json j;
+  for (const Vec3& coefficient : c.coefficients()) j.push_back(vecJson(coefficient));
+  return j;
+}
+
+}  // namespace
+
+Vec3 EdgeCurve::at(double s) const {
+  return (1.0 - s) * (1.0 - s) * a + 2.0 * s * (1.0 - s) * b + s * s * c;
+}
+
+Vec3 EdgeCurve::tangent(double s) const {
+  return 2.0 * ((1.0 - s) * (b - a) + s * (c - b));
+}
+
+std::array<Vec3, 3> EdgeCurve::coefficients() const {
+  return {a, 2.0 * (b - a), a - 2.0 * b + c};
+}
+
+std::array<EdgeCurve, 3> thesisEdgeCurves(const QuadraticPatch& patch) {
+  return {curve(patch, 0, 1), curve(patch, 2, 0), curve(patch, 1, 2)};
+}
+
+EdgesModel::EdgesModel(std::shared_ptr<const TriangleMesh> mesh, Blend blend)
+    : SurfaceModel(std::move(mesh)),
+      blend_(blend),
+      controlPoints_(edgeControlPoints(this->mesh())) {}
+
+SurfacePoint EdgesModel::evaluate(size_t t, double u, double v) const {
+  const QuadraticPatch p = edges(t);
+  Vec3 pu, pv, pos;
+  if (blend_ == Blend::Transfinite) {
+    pos = transfinite(p, u, v, pu, pv);
+  } else {
+    // Printed (u', v') = (v, u): ∂/∂u = ∂/∂v' and ∂/∂v = ∂/∂u'.
+    pos = thesisEq42(p, v, u, pv, pu);
+  }
+  return {pos, orientedPatchNormal(mesh(), t, u, v, pu, pv)};
+}
+
+nlohmann::json EdgesModel::patchJson(size_t t) const {
+  const QuadraticPatch p = edges(t);
+  nlohmann::json j;
+  for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
+  j["control_points"] = {
+      {"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
+  const auto [fu, fv, fw] = thesisEdgeCurves(p);
+  j["edge_curves"] = {{"f_u", curveJson(fu)}, {"f_v", curveJson(fv)}, {"f_w", curveJson(fw)}};
+  return j;
+}
+
+}  // namespace quadtri

@@ -1,0 +1,62 @@
+// What `quadtri convert` writes: the tessellated surface or the patch JSON, chosen by extension.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "math/error.h"
+#include "mesh/mesh_io.h"
+#include "mesh/shapes.h"
+#include "surface/convert_output.h"
+#include "surface/param_model.h"
+
+namespace quadtri {
+namespace {
+
+class ConvertOutput : public ::testing::Test {
+ protected:
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("quadtri-convert-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+       "-" + std::to_string(::getpid()));
+  std::shared_ptr<const TriangleMesh> mesh =
+      std::make_shared<const TriangleMesh>(makeBuiltin("icosahedron").mesh);
+  void SetUp() override { std::filesystem::create_directories(dir); }
+  void TearDown() override { std::filesystem::remove_all(dir); }
+};
+
+TEST_F(ConvertOutput, JsonHoldsEveryPatch) {
+  const ParamModel model(mesh);
+  const auto path = dir / "ico.json";
+  EXPECT_EQ(writeConversion(model, Tessellation::thesis(), path), 0u);
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["model"], "quadric-param");
+  EXPECT_EQ(j["triangles"], 20);
+  EXPECT_EQ(j["tessellation"], "thesis");
+  ASSERT_EQ(j["patches"].size(), 20u);
+  for (size_t t = 0; t < 20; ++t) EXPECT_EQ(j["patches"][t], model.patchJson(t));
+}
+
+TEST_F(ConvertOutput, MeshFilesHoldTheWeldedTessellation) {
+  const auto model = makeModel("quadric-edges", mesh);
+  for (const char* ext : {".obj", ".ply"}) {
+    const auto path = dir / (std::string("ico") + ext);
+    EXPECT_EQ(writeConversion(*model, Tessellation{Tessellation::Kind::Lattice, 3}, path), 20u * 9);
+    const TriangleMesh back = loadMesh(path);
+    EXPECT_EQ(back.triangleCount(), 20u * 9) << ext;
+    // 12 vertices, 30 edges with 2 points each, 1 interior point per patch.
+    EXPECT_EQ(back.positions.size(), 12u + 30u * 2 + 20u) << ext;
+  }
+}
+
+TEST_F(ConvertOutput, UnknownExtensionIsAnErrorAndWritesNothing) {
+  const auto model = makeModel("quadric-param", mesh);
+  const auto path = dir / "ico.stl";
+  EXPECT_THROW(writeConversion(*model, Tessellation{}, path), Error);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace quadtri
