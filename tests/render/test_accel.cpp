@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "fixtures/sphere_patches.h"
 #include "math/error.h"
 #include "mesh/shapes.h"
 #include "render/accel/accel.h"
@@ -22,37 +23,7 @@ TriangleMesh icosphere(int level) {
   return makeBuiltin("icosphere", p).mesh;
 }
 
-// The unit sphere x²+y²+z²−1 = 0 cut into the 20 spherical triangles over the icosahedron's
-// faces: each is clipped by the three planes through the origin and one face edge, and bounded
-// by a dense sampling of the spherical triangle grown by more than the sampling error.
-std::vector<QuadricPatch> spherePatches() {
-  const TriangleMesh ico = makeBuiltin("icosahedron").mesh;
-  std::vector<QuadricPatch> patches;
-  for (size_t t = 0; t < ico.triangleCount(); ++t) {
-    QuadricPatch patch;
-    patch.q = {1, 1, 1, 0, 0, 0, 0, 0, 0, -1};
-    for (Vec4& plane : patch.planes) plane.setZero();  // Eigen leaves `planes{}` uninitialised
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 &a = ico.corner(t, k), &b = ico.corner(t, (k + 1) % 3),
-                 &c = ico.corner(t, (k + 2) % 3);
-      Vec3 n = a.cross(b);
-      if (n.dot(c) < 0) n = -n;
-      patch.planes[k] << n, 0.0;
-    }
-    patch.planeCount = 3;
-    const int n = 64;
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i + j <= n; ++i) {
-        const double u = double(i) / n, v = double(j) / n;
-        patch.bounds.extend(
-            ((1 - u - v) * ico.corner(t, 0) + u * ico.corner(t, 1) + v * ico.corner(t, 2))
-                .normalized());
-      }
-    patch.bounds.inflate(1e-3);
-    patches.push_back(patch);
-  }
-  return patches;
-}
+using fixtures::spherePatches;
 
 TEST(Accel, TriangleHitAtAnalyticT) {
   enableFlushToZero();

@@ -106,8 +106,8 @@ void intersectPatch(const RTCIntersectFunctionNArguments* args) {
   const QuadricPatch& patch =
       (*static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches)[args->primID];
   if (ctx->hits) return collectPatchHits(patch, *ctx, args->geomID, args->primID);
-  // While a patch is the nearest hit its exact t bounds the search; after a triangle took
-  // over, the triangle's float t does.
+  // While a patch is the nearest hit (or nothing is: both ids are then invalid and patchT is
+  // the ray's tfar) its exact t bounds the search; after a triangle took over, its float t does.
   const bool patchIsNearest =
       rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
   const double tmax =

@@ -24,8 +24,8 @@ struct RayHit {
   double t = kInfinity;
   uint32_t geometry = ~0u;
   uint32_t primitive = ~0u;
-  double u = 0, v = 0;   ///< barycentric coordinates of the hit (triangles)
-  Vec3 geometricNormal;  ///< unit, not flipped towards the ray
+  double u = 0, v = 0;                  ///< barycentric coordinates of the hit (triangles)
+  Vec3 geometricNormal = Vec3::Zero();  ///< unit, not flipped towards the ray (zero: no hit)
   bool valid() const { return geometry != ~0u; }
 };
 
