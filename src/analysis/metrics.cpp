@@ -152,11 +152,11 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
   return m;
 }
 
-nlohmann::json toJson(const ModelMetrics& m) {
+nlohmann::ordered_json toJson(const ModelMetrics& m) {
   auto nullable = [](const std::optional<double>& x) {
-    return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+    return x ? nlohmann::ordered_json(*x) : nlohmann::ordered_json(nullptr);
   };
-  return nlohmann::json{
+  return nlohmann::ordered_json{
       {"model", m.model},
       {"mesh", m.mesh},
       {"triangles", m.triangles},
@@ -186,10 +186,10 @@ std::string metricsTable(const std::vector<ModelMetrics>& rows) {
                                          "truth_distance"};
   std::vector<std::vector<std::string>> cells(1, keys);
   for (const ModelMetrics& m : rows) {
-    const nlohmann::json j = toJson(m);
+    const nlohmann::ordered_json j = toJson(m);
     std::vector<std::string> row;
     for (const std::string& key : keys) {
-      const nlohmann::json& value = j.at(key);
+      const nlohmann::ordered_json& value = j.at(key);
       if (value.is_null())
         row.push_back("-");
       else if (value.is_string())

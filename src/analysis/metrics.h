@@ -66,8 +66,8 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
                           const std::optional<AnalyticSurface>& truth, double convertSeconds,
                           const AnalysisOptions& options = {});
 
-/// The DESIGN.md §4 keys plus "model" and "mesh".
-nlohmann::json toJson(const ModelMetrics& metrics);
+/// The DESIGN.md §4 keys plus "model" and "mesh", in the table's order.
+nlohmann::ordered_json toJson(const ModelMetrics& metrics);
 
 /// A text table: one row per model, one column per key, null as "-", columns aligned.
 std::string metricsTable(const std::vector<ModelMetrics>& rows);

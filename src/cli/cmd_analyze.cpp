@@ -53,9 +53,9 @@ Action addAnalyzeCommand(CLI::App& app) {
       fmt::print("mesh: {} ({} triangles)\n{}", opt->mesh, mesh->triangleCount(),
                  metricsTable(rows));
     } else if (opt->model == "all") {
-      nlohmann::json models = nlohmann::json::array();
+      nlohmann::ordered_json models = nlohmann::ordered_json::array();
       for (const ModelMetrics& m : rows) models.push_back(toJson(m));
-      fmt::print("{}\n", nlohmann::json{{"mesh", opt->mesh}, {"models", models}}.dump(2));
+      fmt::print("{}\n", nlohmann::ordered_json{{"mesh", opt->mesh}, {"models", models}}.dump(2));
     } else {
       fmt::print("{}\n", toJson(rows.front()).dump(2));
     }

@@ -3,8 +3,10 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/metrics.h"
+#include "fixtures/sphere_patches.h"
 #include "math/error.h"
 #include "mesh/shapes.h"
+#include "mesh/topology.h"
 
 namespace quadtri {
 namespace {
@@ -77,13 +79,80 @@ TEST(Metrics, ScaleInvariant) {
   EXPECT_NEAR(truthDistance(*a, *sphere.truth), truthDistance(*b, bigSphere), 1e-9);
 }
 
+// A model that meets every constraint on a mesh inscribed in the unit sphere with radial
+// normals: each flat point projected onto the sphere. Rendered tessellated, or as the sphere's
+// quadric patches, so both render paths of the analysis are exercised with known answers.
+class SphereProjection final : public SurfaceModel {
+ public:
+  SphereProjection(std::shared_ptr<const TriangleMesh> mesh, Representation representation)
+      : SurfaceModel(std::move(mesh)), representation_(representation) {
+    if (representation == Representation::Implicit)
+      patches_ = fixtures::spherePatches(this->mesh());
+  }
+  std::string_view name() const override { return "sphere-projection"; }
+  SurfacePoint evaluate(size_t t, double u, double v) const override {
+    const TriangleMesh& m = mesh();
+    const Vec3 p =
+        ((1 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2)).normalized();
+    return {p, p};
+  }
+  Representation representation() const override { return representation_; }
+  const std::vector<QuadricPatch>& quadricPatches() const override { return patches_; }
+  size_t patchMemoryBytes() const override { return patches_.size() * sizeof(QuadricPatch); }
+  nlohmann::json patchJson(size_t) const override { return {}; }
+
+ private:
+  Representation representation_;
+  std::vector<QuadricPatch> patches_;
+};
+
+TEST(Metrics, TessellatedModelMeetingEveryConstraint) {
+  ShapeParams p;
+  p.level = 1;
+  const BuiltinMesh sphere = makeBuiltin("icosphere", p);
+  const auto mesh = std::make_shared<const TriangleMesh>(sphere.mesh);
+  const SphereProjection model(mesh, Representation::Tessellated);
+  AnalysisOptions options;
+  options.tessellation = Tessellation::parse("4");
+  options.crack.lines = 20000;
+  const ModelMetrics m = analyzeModel(model, "icosphere:1", sphere.truth, 0.0, options);
+  const size_t n = 4, T = mesh->triangleCount(), E = MeshTopology(*mesh).edges.size();
+  EXPECT_EQ(m.primitives, T * n * n);
+  // Welded lattice: mesh vertices, n-1 points per edge, (n-1)(n-2)/2 inside each patch; each
+  // with a float3 position and a float3 normal, plus a uint3 per triangle.
+  const size_t vertices = mesh->positions.size() + E * (n - 1) + T * (n - 1) * (n - 2) / 2;
+  EXPECT_EQ(m.memoryBytes, 12 * (2 * vertices + T * n * n));
+  EXPECT_LT(m.vertexPositionError, 1e-15);
+  EXPECT_LT(m.vertexNormalErrorDeg, 1e-6);
+  ASSERT_TRUE(m.c0Gap && m.c1AngleDeg && m.crackRate && m.truthDistance);
+  EXPECT_LT(*m.c0Gap, 1e-15);
+  EXPECT_LT(*m.c1AngleDeg, 1e-6);
+  EXPECT_EQ(*m.crackRate, 0.0);
+  EXPECT_LT(*m.truthDistance, 1e-15);
+}
+
+TEST(Metrics, ImplicitModelIsMeasuredThroughItsPatches) {
+  const BuiltinMesh ico = makeBuiltin("icosahedron");
+  const SphereProjection model(std::make_shared<const TriangleMesh>(ico.mesh),
+                               Representation::Implicit);
+  AnalysisOptions options;
+  options.crack.lines = 20000;
+  const ModelMetrics m = analyzeModel(model, "icosahedron", ico.truth, 0.0, options);
+  EXPECT_EQ(m.primitives, 20u);
+  EXPECT_EQ(m.memoryBytes, 20 * sizeof(QuadricPatch));
+  ASSERT_TRUE(m.crackRate && m.truthDistance);
+  // The patches' shared planes are exact opposites, so the sphere is watertight.
+  EXPECT_EQ(*m.crackRate, 0.0);
+  EXPECT_LT(*m.truthDistance, 1e-15);
+}
+
 TEST(Metrics, OpenMeshHasNoCrackRateAndLoneTriangleNoEdgeMetrics) {
   const BuiltinMesh tri = makeBuiltin("triangle");
   const std::unique_ptr<SurfaceModel> model =
       makeModel("flat", std::make_shared<const TriangleMesh>(tri.mesh));
   const ModelMetrics m = analyzeModel(*model, "triangle", std::nullopt, 0.0);
   EXPECT_FALSE(m.c0Gap || m.c1AngleDeg || m.crackRate || m.truthDistance);
-  const nlohmann::json j = toJson(m);
+  const nlohmann::ordered_json j = toJson(m);
   for (const char* key : {"c0_gap", "c1_angle_deg", "crack_rate", "truth_distance"})
     EXPECT_TRUE(j.at(key).is_null()) << key;
 }
@@ -96,7 +165,7 @@ TEST(Metrics, JsonAndTableCarryEveryKey) {
   m.primitives = 4;
   m.memoryBytes = 96;
   m.c0Gap = 0.25;
-  const nlohmann::json j = toJson(m);
+  const nlohmann::ordered_json j = toJson(m);
   const std::vector<std::string> keys = {"model",
                                          "mesh",
                                          "triangles",
