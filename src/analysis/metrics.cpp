@@ -142,12 +142,7 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
     m.c0Gap = c->c0Gap;
     m.c1AngleDeg = c->c1AngleDeg;
   }
-  if (topology.isClosed()) {
-    Accel accel(Accel::Options{true, true});  // robust, collecting every hit
-    addModelGeometry(accel, geometry);
-    accel.commit();
-    m.crackRate = crackRate(accel, options.crack);
-  }
+  if (topology.isClosed()) m.crackRate = crackRate(geometry, options.crack);
   if (truth) m.truthDistance = truthDistance(model, *truth, options.truthLevel);
   return m;
 }
