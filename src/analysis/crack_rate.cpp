@@ -1,0 +1,146 @@
+#include "analysis/crack_rate.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "math/error.h"
+#include "render/sampling/rng.h"
+
+namespace quadtri {
+namespace {
+
+Vec3 uniformDirection(Pcg32& rng) {
+  const double z = 1.0 - 2.0 * rng.nextDouble();
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const double phi = 2.0 * kPi * rng.nextDouble();
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+// Exact crossing parity of a line with a triangle mesh, given Embree's hits as candidates.
+class TriangleCrossings {
+ public:
+  explicit TriangleCrossings(const TriangleMesh& mesh) : mesh_(mesh) {
+    // Vertex → triangles, compressed.
+    ringStart_.assign(mesh.positions.size() + 1, 0);
+    for (const Tri& tri : mesh.triangles)
+      for (uint32_t v : tri) ++ringStart_[v + 1];
+    for (size_t v = 0; v < mesh.positions.size(); ++v) ringStart_[v + 1] += ringStart_[v];
+    ring_.resize(ringStart_.back());
+    std::vector<uint32_t> fill(ringStart_.begin(), ringStart_.end() - 1);
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
+      for (uint32_t v : mesh.triangles[t]) ring_[fill[v]++] = t;
+  }
+
+  /// Triangles crossed by the line o + s·d among the vertex one-rings of the candidates.
+  size_t count(const Vec3& o, const Vec3& d, const std::vector<RayHit>& candidates,
+               std::vector<uint32_t>& scratch) const {
+    scratch.clear();
+    for (const RayHit& hit : candidates)
+      for (uint32_t v : mesh_.triangles[hit.primitive])
+        scratch.insert(scratch.end(), ring_.begin() + ringStart_[v],
+                       ring_.begin() + ringStart_[v + 1]);
+    std::sort(scratch.begin(), scratch.end());
+    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+    size_t crossed = 0;
+    for (uint32_t t : scratch) crossed += crosses(t, o, d);
+    return crossed;
+  }
+
+ private:
+  // Side of the line relative to the directed edge a→b, from the undirected edge's own sign
+  // (lower index first; zero counts as positive), so both triangles of an edge agree exactly.
+  bool edgeSide(uint32_t a, uint32_t b, const Vec3& o, const Vec3& d) const {
+    const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+    const bool positive = d.dot((mesh_.positions[lo] - o).cross(mesh_.positions[hi] - o)) >= 0.0;
+    return a == lo ? positive : !positive;
+  }
+  // The line passes through the triangle when it lies on the same side of all three edges.
+  bool crosses(uint32_t t, const Vec3& o, const Vec3& d) const {
+    const Tri& tri = mesh_.triangles[t];
+    const bool s0 = edgeSide(tri[0], tri[1], o, d);
+    return edgeSide(tri[1], tri[2], o, d) == s0 && edgeSide(tri[2], tri[0], o, d) == s0;
+  }
+
+  const TriangleMesh& mesh_;
+  std::vector<uint32_t> ringStart_, ring_;
+};
+
+// A patch hit at signed distance s along the line, and whether it enters the surface there.
+struct LineHit {
+  double s;
+  bool entering;
+};
+
+// Crossings among patch hits: a cluster of hits closer than `mergeDistance` is one crossing
+// when all its hits cross the same way (a line through a shared boundary hits each patch
+// there), two when it both enters and leaves.
+size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance) {
+  std::sort(line.begin(), line.end(), [](const LineHit& a, const LineHit& b) { return a.s < b.s; });
+  size_t crossings = 0;
+  for (size_t i = 0; i < line.size();) {
+    bool mixed = false;
+    size_t j = i + 1;
+    for (; j < line.size() && line[j].s - line[j - 1].s < mergeDistance; ++j)
+      mixed |= line[j].entering != line[i].entering;
+    crossings += mixed ? 2 : 1;
+    i = j;
+  }
+  return crossings;
+}
+
+}  // namespace
+
+double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options) {
+  if (options.lines == 0) fail("crack rate: the number of lines must be positive");
+  Accel accel(Accel::Options{true, true});  // robust, reporting every hit
+  addModelGeometry(accel, geometry);
+  accel.commit();
+  Bounds3 box = accel.bounds();
+  if (box.empty()) fail("crack rate: the geometry is empty");
+  const double diagonal = box.diagonal().norm();
+  box.inflate(options.boxMargin * diagonal);
+  const double mergeDistance = 1e-7 * diagonal;
+  // From a point of the grown box, the whole box lies within its diagonal.
+  const double reach = box.diagonal().norm();
+  const std::optional<TriangleCrossings> triangles =
+      geometry.patches ? std::nullopt : std::optional<TriangleCrossings>(geometry.triangles);
+
+  auto cracked = [&](const Vec3& p, const Vec3& d, std::vector<RayHit>& hits,
+                     std::vector<LineHit>& line, std::vector<uint32_t>& scratch) {
+    hits.clear();
+    line.clear();
+    for (const double sign : {1.0, -1.0}) {
+      const size_t before = hits.size();
+      accel.allHits(Ray{p, sign * d, 0.0, reach}, hits);
+      for (size_t i = before; i < hits.size(); ++i)
+        line.push_back({sign * hits[i].t, hits[i].geometricNormal.dot(d) < 0.0});
+    }
+    const size_t crossings =
+        triangles ? triangles->count(p, d, hits, scratch) : patchCrossings(line, mergeDistance);
+    return crossings % 2 == 1;
+  };
+  const size_t count = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, options.lines), size_t(0),
+      [&](const tbb::blocked_range<size_t>& range, size_t sum) {
+        enableFlushToZero();
+        std::vector<RayHit> hits;
+        std::vector<LineHit> line;
+        std::vector<uint32_t> scratch;
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+          Pcg32 rng(options.seed, i);
+          const Vec3 u(rng.nextDouble(), rng.nextDouble(), rng.nextDouble());
+          const Vec3 p = box.lo + box.diagonal().cwiseProduct(u);
+          sum += cracked(p, uniformDirection(rng), hits, line, scratch);
+        }
+        return sum;
+      },
+      std::plus<size_t>());
+  return double(count) / double(options.lines);
+}
+
+}  // namespace quadtri
