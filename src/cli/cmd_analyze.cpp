@@ -4,6 +4,7 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "analysis/heatmaps.h"
 #include "analysis/metrics.h"
 #include "cli/commands.h"
 #include "math/error.h"
@@ -13,7 +14,7 @@ namespace quadtri::cli {
 
 Action addAnalyzeCommand(CLI::App& app) {
   struct Options {
-    std::string mesh, model = "all", tessellation = "8", normals = "file";
+    std::string mesh, model = "all", tessellation = "8", normals = "file", heatmaps;
     bool json = false;
     AnalysisOptions analysis;
   };
@@ -34,6 +35,9 @@ Action addAnalyzeCommand(CLI::App& app) {
                   "Vertex normals: file, average (thesis eq. 2.8) or angle")
       ->check(CLI::IsMember({"file", "average", "angle"}))
       ->capture_default_str();
+  sub->add_option("--heatmaps", opt->heatmaps,
+                  "Folder for per-patch PNG heatmaps: normal as colour, and for implicit models "
+                  "(f_i o f_p)(u,v) and |n_p x n_i| (thesis figs. 5.3-5.6)");
   return [opt]() {
     opt->analysis.tessellation = Tessellation::parse(opt->tessellation);
     if (opt->analysis.crack.lines == 0) fail("--lines: expected a positive number of lines");
@@ -48,6 +52,9 @@ Action addAnalyzeCommand(CLI::App& app) {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       rows.push_back(analyzeModel(*model, opt->mesh, input.truth, seconds, opt->analysis));
+      if (!opt->heatmaps.empty())
+        for (const auto& path : writeHeatmaps(*model, opt->heatmaps, input.description))
+          fmt::print(stderr, "wrote {}\n", path.string());
     }
     if (!opt->json) {
       fmt::print("mesh: {} ({} triangles)\n{}", opt->mesh, mesh->triangleCount(),
