@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "surface/implicit_fit.h"
+#include "surface/local_patches.h"
 
 namespace quadtri {
 namespace {
@@ -32,10 +33,6 @@ std::optional<Vec3> projectOntoQuadric(const QuadricCoeffs& q, const QuadraticPa
   const auto s = nearestRayRoot(q, p, n, longestEdge(fp));
   if (!s) return std::nullopt;
   return Vec3(p + *s * n);
-}
-
-nlohmann::json toJson(const Vec3& p) {
-  return {p.x(), p.y(), p.z()};
 }
 
 }  // namespace
@@ -92,20 +89,8 @@ SurfacePoint ImplicitModel::evaluate(size_t t, double u, double v) const {
 }
 
 nlohmann::json ImplicitModel::patchJson(size_t t) const {
-  const QuadricPatch& patch = patches_[t];
-  nlohmann::json j;
-  j["quadric"] = patch.q;
-  j["planes"] = nlohmann::json::array();
-  for (int i = 0; i < patch.planeCount; ++i) {
-    const Vec4& pl = patch.planes[i];
-    j["planes"].push_back({pl[0], pl[1], pl[2], pl[3]});
-  }
-  j["bounds"] = {{"min", toJson(patch.bounds.lo)}, {"max", toJson(patch.bounds.hi)}};
-  nlohmann::json c = nlohmann::json::array();
-  for (const Vec3& ci : parametric_[t].coefficients()) c.push_back(toJson(ci));
-  j["parametric"] = {{"c", c}};
-  j["control_points"] = nlohmann::json::array();
-  for (const Vec3& b : parametric_[t].b) j["control_points"].push_back(toJson(b));
+  nlohmann::json j = quadraticPatchJson(parametric_[t]);
+  j.update(quadricPatchJson(patches_[t]));
   return j;
 }
 

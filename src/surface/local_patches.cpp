@@ -1,9 +1,12 @@
 #include "surface/local_patches.h"
 
+#include <fmt/core.h>
+
 #include <nlohmann/json.hpp>
 
 #include "mesh/topology.h"
 #include "surface/edge_curves.h"
+#include "surface/quadric_patch.h"
 
 namespace quadtri {
 
@@ -52,6 +55,28 @@ Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v,
 
 nlohmann::json vecJson(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
+}
+
+nlohmann::json quadraticPatchJson(const QuadraticPatch& p) {
+  nlohmann::json j;
+  for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
+  j["control_points"] = {{"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
+  const std::array<Vec3, 6> c = p.coefficients();
+  for (int k = 0; k < 6; ++k) j["coefficients"][fmt::format("c{}", k)] = vecJson(c[k]);
+  return j;
+}
+
+nlohmann::json quadricPatchJson(const QuadricPatch& patch) {
+  nlohmann::json j;
+  j["quadric"] = patch.q;
+  j["planes"] = nlohmann::json::array();
+  for (int i = 0; i < patch.planeCount; ++i) {
+    const Vec4& pl = patch.planes[i];
+    j["planes"].push_back({pl[0], pl[1], pl[2], pl[3]});
+  }
+  j["bounds"] = {{"min", vecJson(patch.bounds.lo)}, {"max", vecJson(patch.bounds.hi)}};
+  j["orientation"] = patch.orientation;
+  return j;
 }
 
 }  // namespace quadtri

@@ -33,4 +33,12 @@ Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v,
 /// [x, y, z] for patch JSON.
 nlohmann::json vecJson(const Vec3& v);
 
+struct QuadraticPatch;
+struct QuadricPatch;
+/// {"vertices", "control_points": {b01, b12, b20}, "coefficients": {c0..c5}} of a quadratic
+/// Bézier patch (the thesis' §4.2 parametric triangle), shared by every model built on one.
+nlohmann::json quadraticPatchJson(const QuadraticPatch& patch);
+/// {"quadric": [A..J], "planes": [[nx, ny, nz, d]...], "bounds": {min, max}, "orientation"}.
+nlohmann::json quadricPatchJson(const QuadricPatch& patch);
+
 }  // namespace quadtri

@@ -18,15 +18,6 @@ SurfacePoint ParamModel::evaluate(size_t t, double u, double v) const {
   return {p.position(u, v), orientedPatchNormal(mesh(), t, u, v, pu, pv)};
 }
 
-nlohmann::json ParamModel::patchJson(size_t t) const {
-  const QuadraticPatch p = patch(t);
-  nlohmann::json j;
-  for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
-  j["control_points"] = {
-      {"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
-  const std::array<Vec3, 6> c = p.coefficients();
-  for (int k = 0; k < 6; ++k) j["coefficients"][fmt::format("c{}", k)] = vecJson(c[k]);
-  return j;
-}
+nlohmann::json ParamModel::patchJson(size_t t) const { return quadraticPatchJson(patch(t)); }
 
 }  // namespace quadtri

@@ -416,12 +416,13 @@ TEST(ImplicitModel, RegisteredAsQuadricImplicit) {
   EXPECT_EQ(j["planes"][1][3].get<double>(), patch.planes[1][3]);
   EXPECT_EQ(j["bounds"]["min"][2].get<double>(), patch.bounds.lo.z());
   EXPECT_EQ(j["bounds"]["max"][0].get<double>(), patch.bounds.hi.x());
-  ASSERT_EQ(j["parametric"]["c"].size(), 6u);
+  ASSERT_EQ(j["coefficients"].size(), 6u);
   const auto* implicit = dynamic_cast<const ImplicitModel*>(model.get());
   ASSERT_NE(implicit, nullptr);
-  EXPECT_EQ(j["parametric"]["c"][0][1].get<double>(), implicit->parametricPatch(3).v[0].y());
+  EXPECT_EQ(j["coefficients"]["c0"][1].get<double>(), implicit->parametricPatch(3).v[0].y());
   ASSERT_EQ(j["control_points"].size(), 3u);
-  EXPECT_EQ(j["control_points"][2][0].get<double>(), implicit->parametricPatch(3).b[2].x());
+  EXPECT_EQ(j["control_points"]["b20"][0].get<double>(), implicit->parametricPatch(3).b[2].x());
+  EXPECT_EQ(j["orientation"].get<double>(), patch.orientation);
 }
 
 }  // namespace
