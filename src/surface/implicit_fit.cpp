@@ -1,6 +1,6 @@
 #include "surface/implicit_fit.h"
 
-#include <Eigen/SVD>
+#include <Eigen/QR>
 
 namespace quadtri {
 namespace {
@@ -57,8 +57,9 @@ std::optional<QuadricCoeffs> planarPatchQuadric(const QuadraticPatch& fp) {
 
 QuadricCoeffs fitThesisQuadric(const QuadraticPatch& fp) {
   if (auto plane = planarPatchQuadric(fp)) return *plane;
-  Eigen::MatrixXd m(13, 10);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(13);
+  // Fixed sizes keep the solve free of heap allocation (conversion of 1M triangles is timed).
+  Eigen::Matrix<double, 13, 10> m;
+  Eigen::Matrix<double, 13, 1> rhs = Eigen::Matrix<double, 13, 1>::Zero();
   const double corners[3][2] = {{0, 0}, {1, 0}, {0, 1}};
   int row = 0;
   for (const auto& c : corners) m.row(row++) = valueRow(fp.position(c[0], c[1]));  // eq. 4.10
@@ -80,8 +81,17 @@ QuadricCoeffs fitThesisQuadric(const QuadraticPatch& fp) {
   }
   m.row(row).setOnes();  // eq. 4.13
   rhs[row] = 1.0;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(m, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd x = svd.solve(rhs);
+  // Least squares by unpivoted Householder QR where the rows have full rank (the common case,
+  // and the cheapest), else the minimum-norm solution of a complete orthogonal decomposition
+  // (what the SVD's pseudo-inverse gives).
+  const Eigen::HouseholderQR<Eigen::Matrix<double, 13, 10>> qr(m);
+  const auto r = qr.matrixQR().diagonal().cwiseAbs();
+  Eigen::Matrix<double, 10, 1> x;
+  if (r.minCoeff() > 1e-10 * r.maxCoeff()) {
+    x = qr.solve(rhs);
+  } else {
+    x = Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 13, 10>>(m).solve(rhs);
+  }
   QuadricCoeffs q{};
   for (int i = 0; i < 10; ++i) q[i] = std::isfinite(x[i]) ? x[i] : 0.0;
   return q;

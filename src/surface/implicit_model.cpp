@@ -1,5 +1,7 @@
 #include "surface/implicit_model.h"
 
+#include <tbb/parallel_for.h>
+
 #include <nlohmann/json.hpp>
 
 #include "surface/implicit_fit.h"
@@ -9,7 +11,7 @@ namespace quadtri {
 namespace {
 
 // Lattice resolution (points per side minus one) of the samples that bound each patch.
-constexpr int kBoundSamples = 8;
+constexpr int kBoundSamples = 4;
 // Bounds margin, as a fraction of the triangle's longest edge.
 constexpr double kBoundMargin = 0.05;
 
@@ -42,14 +44,14 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
   const TriangleMesh& m = mesh();
   const auto controlPoints = edgeControlPoints(m);
   const size_t n = m.triangleCount();
-  parametric_.reserve(n);
-  parametricOrientation_.reserve(n);
+  parametric_.resize(n);
+  parametricOrientation_.resize(n);
   patches_.resize(n);
-  for (size_t t = 0; t < n; ++t) {
+  tbb::parallel_for(size_t(0), n, [&](size_t t) {
     const QuadraticPatch fp = quadraticPatch(m, controlPoints, t);
     const double orient = patchOrientation(m, t);
-    parametric_.push_back(fp);
-    parametricOrientation_.push_back(orient);
+    parametric_[t] = fp;
+    parametricOrientation_[t] = orient;
     QuadricPatch& patch = patches_[t];
     patch.q = fitThesisQuadric(fp);
     setThesisClipPlanes(fp, patch);
@@ -73,7 +75,7 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
       }
     box.inflate(kBoundMargin * longestEdge(fp));
     patch.bounds = box;
-  }
+  });
 }
 
 SurfacePoint ImplicitModel::evaluate(size_t t, double u, double v) const {
