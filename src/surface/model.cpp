@@ -5,6 +5,7 @@
 #include "math/error.h"
 #include "surface/flat_model.h"
 #include "surface/quadric_patch.h"
+#include "surface/robust_implicit_model.h"
 
 namespace quadtri {
 
@@ -14,13 +15,16 @@ const std::vector<QuadricPatch>& SurfaceModel::quadricPatches() const {
 }
 
 const std::vector<std::string>& modelNames() {
-  static const std::vector<std::string> names = {"flat", "shading"};
+  static const std::vector<std::string> names = {"flat", "shading", "quadric-implicit-robust"};
   return names;
 }
 
-std::unique_ptr<SurfaceModel> makeModel(std::string_view name, std::shared_ptr<const TriangleMesh> mesh) {
+std::unique_ptr<SurfaceModel> makeModel(std::string_view name,
+                                        std::shared_ptr<const TriangleMesh> mesh) {
   if (name == "flat") return std::make_unique<FlatModel>(std::move(mesh), false);
   if (name == "shading") return std::make_unique<FlatModel>(std::move(mesh), true);
+  if (name == "quadric-implicit-robust")
+    return std::make_unique<RobustImplicitModel>(std::move(mesh));
   fail("unknown model '{}': expected one of {}", name, fmt::join(modelNames(), ", "));
 }
 
