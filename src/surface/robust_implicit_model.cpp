@@ -71,6 +71,49 @@ SharedEdge sharedEdge(const TriangleMesh& mesh, const Edge& edge) {
   return out;
 }
 
+Mat3 quadraticPart(const QuadricCoeffs& q) {
+  Mat3 m;
+  m << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
+  return m;
+}
+
+// Replaces the edge plane by a plane through the chord that contains the curve where the two
+// neighbours' quadrics a and b meet, so both patches end on the same curve. Both contain the
+// chord's endpoints with (nearly) the same tangent planes, so a − κb (κ matching their
+// gradients at the chord's midpoint c) vanishes to second order at c; in the plane through c
+// perpendicular to the chord its zero set is a line pair through c, and the separator is the
+// line closer to the edge plane's direction d. For data from any quadric the fits are that
+// quadric plus multiples of L_A² and L_B², a − b is exactly a plane pair through the edge, and
+// the neighbours meet exactly on the separator; otherwise they meet on it to second order.
+void alignWithCrossing(const QuadricCoeffs& a, const QuadricCoeffs& b, const Vec3& va, const Vec3& vb,
+                       SharedEdge& edge) {
+  const Vec3 c = 0.5 * (va + vb);
+  const Vec3 ga = quadricGradient(a, c), gb = quadricGradient(b, c);
+  if (!(gb.squaredNorm() > 0.0)) return;
+  const double kappa = ga.dot(gb) / gb.squaredNorm();
+  const Mat3 ma = quadraticPart(a);
+  const Mat3 md = ma - kappa * quadraticPart(b);
+  // The same quadric on both sides (sphere data): any plane through the edge is exact; keep P.
+  if (!(md.norm() > 1e-9 * ma.norm())) return;
+  const Vec3 ehat = (vb - va).normalized();
+  const Vec3 d = edge.direction, w = ehat.cross(d);
+  const double a20 = d.dot(md * d), a11 = 2.0 * d.dot(md * w), a02 = w.dot(md * w);
+  const double disc = a11 * a11 - 4.0 * a02 * a20;
+  if (disc < 0.0) return;  // a − κb is definite there: the quadrics touch only along the chord
+  // The root of a02 t² + a11 t + a20 = 0 of least |t| (stable form); direction d + t w.
+  const double den = a11 + std::copysign(std::sqrt(disc), a11);
+  const double t = den != 0.0 ? -2.0 * a20 / den : 0.0;
+  if (!std::isfinite(t)) return;
+  Vec3 normal = ehat.cross(d + t * w).normalized();
+  if (normal.dot(edge.plane.head<3>()) < 0.0) normal = -normal;
+  // Tilting the separator far from the edge plane would reorder the wedges around a vertex.
+  if (normal.dot(edge.plane.head<3>()) < std::cos(kPi / 6)) return;
+  edge.plane << normal, -normal.dot(va);
+  const Vec3 up = edge.direction;
+  edge.direction = normal.cross(ehat);
+  if (edge.direction.dot(up) < 0.0) edge.direction = -edge.direction;
+}
+
 }  // namespace
 
 RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> meshIn)
@@ -86,16 +129,34 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   frames_.resize(m.triangleCount());
   tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
     CornerData data;
+    for (int k = 0; k < 3; ++k) {
+      data.position[k] = m.corner(t, k);
+      data.normal[k] = m.cornerNormal(t, k);
+      data.arcMidpoint[k] = edges[topo.edgeOf[t][k]].arcMidpoint;
+    }
+    const QuadricFit fit = fitQuadric(data);
+    QuadricPatch& patch = patches_[t];
+    patch.q = fit.q;
+    frames_[t].cornerNormalErrorDeg = fit.cornerNormalErrorDeg;
+    double facing = 0.0;
+    for (int k = 0; k < 3; ++k) facing += quadricGradient(fit.q, data.position[k]).dot(data.normal[k]);
+    patch.orientation = facing < 0.0 ? -1.0 : 1.0;
+  });
+  tbb::parallel_for(size_t(0), edges.size(), [&](size_t i) {
+    const Edge& edge = topo.edges[i];
+    if (edge.sides.size() == 2)
+      alignWithCrossing(patches_[edge.sides[0].first].q, patches_[edge.sides[1].first].q, m.positions[edge.a],
+                        m.positions[edge.b], edges[i]);
+  });
+  tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
     QuadricPatch& patch = patches_[t];
     frame.parametric = quadraticPatch(m, controlPoints, t);
     frame.faceNormal = patchOrientation(m, t) * m.faceNormal(t);
     for (int k = 0; k < 3; ++k) {
       const SharedEdge& edge = edges[topo.edgeOf[t][k]];
-      data.position[k] = m.corner(t, k);
-      data.normal[k] = m.cornerNormal(t, k);
-      data.arcMidpoint[k] = edge.arcMidpoint;
       frame.edgeDirection[k] = edge.direction;
+      frame.edgePlane[k] = edge.plane;
       // Inside is the side of the opposite corner; the neighbour across the edge gets the
       // same plane negated (exactly), so the two partition space along the edge.
       const Vec3& opposite = m.corner(t, (k + 2) % 3);
@@ -103,13 +164,6 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       patch.planes[k] = side < 0.0 ? Vec4(-edge.plane) : edge.plane;
     }
     patch.planeCount = 3;
-    const QuadricFit fit = fitQuadric(data);
-    patch.q = fit.q;
-    frame.cornerNormalErrorDeg = fit.cornerNormalErrorDeg;
-    double facing = 0.0;
-    for (int k = 0; k < 3; ++k)
-      facing += quadricGradient(fit.q, data.position[k]).dot(data.normal[k]);
-    patch.orientation = facing < 0.0 ? -1.0 : 1.0;
     clipToPatch(t);
   });
 }
@@ -118,12 +172,22 @@ SurfacePoint RobustImplicitModel::project(size_t t, double u, double v, bool& on
   const Frame& frame = frames_[t];
   const QuadricPatch& patch = patches_[t];
   const QuadricCoeffs& q = patch.q;
-  const Vec3 start = frame.parametric.position(u, v);
-  // Blend the edge directions with weights that vanish off each edge, so boundary points move
-  // inside their edge plane and land on the clipped boundary.
-  const double l0 = 1.0 - u - v, l1 = u, l2 = v;
-  Vec3 dir = l0 * l1 * frame.edgeDirection[0] + l1 * l2 * frame.edgeDirection[1] +
-             l2 * l0 * frame.edgeDirection[2];
+  // Blend the edge planes and directions with weights that are 1 on their edge and 0 on the
+  // others, so boundary points start in their edge plane, move inside it and land on the
+  // clipped boundary. (Corners lie on all their planes: nothing moves there.)
+  const double l[3] = {1.0 - u - v, u, v};
+  const double wsum = l[0] * l[1] + l[1] * l[2] + l[2] * l[0];
+  Vec3 start = frame.parametric.position(u, v);
+  Vec3 dir = Vec3::Zero();
+  if (wsum > 0.0) {
+    const Vec3 base = start;
+    for (int k = 0; k < 3; ++k) {
+      const double wk = l[k] * l[(k + 1) % 3] / wsum;
+      const Vec4& plane = frame.edgePlane[k];
+      start -= wk * (plane.head<3>().dot(base) + plane[3]) * plane.head<3>();
+      dir += wk * frame.edgeDirection[k];
+    }
+  }
   dir = safeNormalized(dir, frame.faceNormal);
   const double a = q[0] * dir.x() * dir.x() + q[1] * dir.y() * dir.y() + q[2] * dir.z() * dir.z() +
                    q[3] * dir.x() * dir.y() + q[4] * dir.x() * dir.z() + q[5] * dir.y() * dir.z();

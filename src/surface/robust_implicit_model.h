@@ -13,14 +13,18 @@ namespace quadtri {
 
 /// Each triangle becomes the quadric of fitQuadric (corners exact, corner normals exact on data
 /// from any quadric, the sphere reproduced exactly) clipped to
-///  - its three edge planes P_ij (through vi, vj, spanned by vj−vi and ni+nj, from normals both
-///    sides share): each is computed once per mesh edge and handed to the two neighbours with
-///    opposite inside sides, so together they partition space along the edge;
+///  - three edge planes through the edge's chord, computed once per mesh edge and handed to
+///    the two neighbours with opposite inside sides, so together they partition space along
+///    the edge: the plane through the point where the neighbours' quadrics cross near the
+///    edge's middle (so both end on the same curve; exact for data from any quadric), or where
+///    they do not cross, the thesis' P_ij (spanned by vj−vi and ni+nj, from normals both sides
+///    share);
 ///  - a slab parallel to the triangle around the patch's height range, which keeps the near
 ///    sheet only;
 ///  - a tight box: the sampled patch grown by a curvature bound on the sagitta between samples.
 /// evaluate(t, u, v) projects the thesis' parametric patch f_p(u, v) onto the quadric along a
-/// direction that lies in P_ij on edge ij, so the boundary it reports is the clipped boundary.
+/// direction that lies in the edge plane on each edge (the start point moved into that plane),
+/// so the boundary it reports is the clipped boundary.
 class RobustImplicitModel final : public SurfaceModel {
  public:
   explicit RobustImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
@@ -41,6 +45,7 @@ class RobustImplicitModel final : public SurfaceModel {
   struct Frame {
     QuadraticPatch parametric;
     std::array<Vec3, 3> edgeDirection;
+    std::array<Vec4, 3> edgePlane;
     Vec3 faceNormal;
     double cornerNormalErrorDeg = 0.0;
   };
