@@ -53,14 +53,17 @@ Mat4 matrixOf(const Coeffs& w) {
   return Q;
 }
 
-QuadricCoeffs coefficientsOf(const Mat4& Q) {
+QuadricCoeffs coefficientsOf(const Mat4& Q, double scale = 1.0) {
   QuadricCoeffs q = {Q(0, 0),     Q(1, 1),     Q(2, 2),     2 * Q(0, 1), 2 * Q(0, 2),
                      2 * Q(1, 2), 2 * Q(0, 3), 2 * Q(1, 3), 2 * Q(2, 3), Q(3, 3)};
+  for (double& c : q) c *= scale;
+  return q;
+}
+
+double norm(const QuadricCoeffs& q) {
   double norm2 = 0.0;
   for (double c : q) norm2 += c * c;
-  const double inv = 1.0 / std::sqrt(norm2);
-  for (double& c : q) c *= inv;
-  return q;
+  return std::sqrt(norm2);
 }
 
 // Fallback for a triangle without extent: the plane through its point with the mean normal.
@@ -72,7 +75,7 @@ QuadricFit pointFit(const CornerData& data) {
   Q.block<3, 1>(0, 3) = 0.5 * n;
   Q.block<1, 3>(3, 0) = 0.5 * n.transpose();
   Q(3, 3) = -n.dot(p);
-  fit.q = coefficientsOf(Q);
+  fit.q = coefficientsOf(Q, 1.0 / norm(coefficientsOf(Q)));
   for (const Vec3& nk : data.normal)
     fit.cornerNormalErrorDeg = std::max(fit.cornerNormalErrorDeg, angleDegrees(n, nk));
   return fit;
@@ -178,7 +181,10 @@ QuadricFit fitQuadric(const CornerData& data) {
   Mat4 S = Mat4::Identity();
   S.block<3, 1>(0, 3) = -centre;
   S(3, 3) = scale;
-  fit.q = coefficientsOf(S.transpose() * matrixOf(w) * S);
+  const Mat4 world = S.transpose() * matrixOf(w) * S;
+  const double unit = 1.0 / norm(coefficientsOf(world));
+  fit.q = coefficientsOf(world, unit);
+  fit.pencil = coefficientsOf(S.transpose() * matrixOf(pencil) * S, unit);
   return fit;
 }
 

