@@ -19,6 +19,8 @@ constexpr double kTangencyDamping = 1e-8;
 // Damping of the choice of λ in q + λL²: Σ L(m)⁴ is ~(h/8R)⁴ for curvature radius R, so this
 // acts only where the arc midpoints lie within ~1e-6 edge lengths of the plane.
 constexpr double kPencilDamping2 = 1e-24;
+// Below this share of Σ n_k·∇q(v_k) at one corner the fit counts as turned against the normal.
+constexpr double kLeastCornerShare = 0.05;
 
 // Row r with r·w = q(y).
 Row valueRow(const Vec3& y) {
@@ -81,6 +83,58 @@ QuadricFit pointFit(const CornerData& data) {
   return fit;
 }
 
+// Steps (1) and (2) of fitQuadric in the local frame: w, and the null space of the hard rows
+// (the directions (3) may still move in). perCorner replaces the normalisation's sum by one
+// row per corner. False when the hard rows vanish or contradict each other.
+bool solveTangency(const std::array<Vec3, 3>& y, const std::array<Vec3, 3>& normal, bool perCorner,
+                   Coeffs& w, Eigen::MatrixXd& nullBasis) {
+  Eigen::Matrix<double, 6, 10> H = Eigen::Matrix<double, 6, 10>::Zero();
+  Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int k = 0; k < 3; ++k) {
+    H.row(k) = valueRow(y[k]);
+    if (perCorner) {
+      H.row(3 + k) = gradientRow(y[k], normal[k]);
+      rhs[3 + k] = 1.0 / 3.0;
+    } else {
+      H.row(3) += gradientRow(y[k], normal[k]);
+      rhs[3] = 1.0;
+    }
+  }
+  Eigen::JacobiSVD<Eigen::Matrix<double, 6, 10>> hardSvd(H,
+                                                         Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const auto hs = hardSvd.singularValues();
+  int rank = 0;
+  while (rank < 6 && hs[rank] > 1e-12 * hs[0]) ++rank;
+  if (rank == 0) return false;
+  Coeffs particular = Coeffs::Zero();
+  for (int i = 0; i < rank; ++i)
+    particular += (hardSvd.matrixU().col(i).dot(rhs) / hs[i]) * hardSvd.matrixV().col(i);
+  // Per-corner rows can contradict each other (a repeated corner with opposite normals).
+  if ((H * particular - rhs).norm() > 1e-9 * rhs.norm()) return false;
+  nullBasis = hardSvd.matrixV().rightCols(10 - rank);
+
+  // Tangency: the gradient's tangential part at each corner, damped least squares on the null
+  // space of the hard rows (particular ⟂ that null space, so damping pulls toward it).
+  Eigen::Matrix<double, 6, 10> T;
+  for (int k = 0; k < 3; ++k) {
+    Vec3 t1, t2;
+    orthonormalBasis(normal[k], t1, t2);
+    T.row(2 * k) = gradientRow(y[k], t1);
+    T.row(2 * k + 1) = gradientRow(y[k], t2);
+  }
+  const Eigen::MatrixXd TN = T * nullBasis;
+  const Eigen::Matrix<double, 6, 1> residual = T * particular;
+  Eigen::JacobiSVD<Eigen::MatrixXd> tanSvd(TN, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  Eigen::VectorXd a = Eigen::VectorXd::Zero(nullBasis.cols());
+  for (int i = 0; i < tanSvd.singularValues().size(); ++i) {
+    const double s = tanSvd.singularValues()[i];
+    a -= (s / (s * s + kTangencyDamping * kTangencyDamping)) *
+         tanSvd.matrixU().col(i).dot(residual) * tanSvd.matrixV().col(i);
+  }
+  w = particular + nullBasis * a;
+  return true;
+}
+
 }  // namespace
 
 Vec3 edgeArcMidpoint(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj) {
@@ -113,42 +167,24 @@ QuadricFit fitQuadric(const CornerData& data) {
     m[k] = (data.arcMidpoint[k] - centre) / scale;
   }
 
-  // (1) Hard rows: corners on q, and the normalisation Σ n_k·∇q(v_k) = 1.
-  Eigen::Matrix<double, 4, 10> H;
-  for (int k = 0; k < 3; ++k) H.row(k) = valueRow(y[k]);
-  H.row(3) = gradientRow(y[0], data.normal[0]) + gradientRow(y[1], data.normal[1]) +
-             gradientRow(y[2], data.normal[2]);
-  const Eigen::Vector4d rhs(0, 0, 0, 1);
-  Eigen::JacobiSVD<Eigen::Matrix<double, 4, 10>> hardSvd(H,
-                                                         Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector4d hs = hardSvd.singularValues();
-  int rank = 0;
-  while (rank < 4 && hs[rank] > 1e-12 * hs[0]) ++rank;
-  if (rank == 0) return pointFit(data);
-  Coeffs particular = Coeffs::Zero();
-  for (int i = 0; i < rank; ++i)
-    particular += (hardSvd.matrixU().col(i).dot(rhs) / hs[i]) * hardSvd.matrixV().col(i);
-  const Eigen::MatrixXd nullBasis = hardSvd.matrixV().rightCols(10 - rank);
-
-  // (2) Tangency: the gradient's tangential part at each corner, damped least squares on the
-  // null space of the hard rows (particular ⟂ that null space, so damping pulls toward it).
-  Eigen::Matrix<double, 6, 10> T;
+  // (1)+(2); if the least-squares tangency turns a corner's gradient against its normal
+  // (normals no quadric comes near, e.g. averaged across parts that pass through each other),
+  // (1) fixes every corner's normal component instead: n_k·∇q(v_k) = 1/3.
+  Coeffs w;
+  Eigen::MatrixXd nullBasis;
+  if (!solveTangency(y, data.normal, false, w, nullBasis)) return pointFit(data);
+  double least = kInfinity, sum = 0.0;
   for (int k = 0; k < 3; ++k) {
-    Vec3 t1, t2;
-    orthonormalBasis(data.normal[k], t1, t2);
-    T.row(2 * k) = gradientRow(y[k], t1);
-    T.row(2 * k + 1) = gradientRow(y[k], t2);
+    const double along = gradientOf(w, y[k]).dot(data.normal[k]);
+    least = std::min(least, along);
+    sum += along;
   }
-  const Eigen::MatrixXd TN = T * nullBasis;
-  const Eigen::Matrix<double, 6, 1> residual = T * particular;
-  Eigen::JacobiSVD<Eigen::MatrixXd> tanSvd(TN, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  Eigen::VectorXd a = Eigen::VectorXd::Zero(nullBasis.cols());
-  for (int i = 0; i < tanSvd.singularValues().size(); ++i) {
-    const double s = tanSvd.singularValues()[i];
-    a -= (s / (s * s + kTangencyDamping * kTangencyDamping)) *
-         tanSvd.matrixU().col(i).dot(residual) * tanSvd.matrixV().col(i);
+  Coeffs corner;
+  Eigen::MatrixXd cornerNull;
+  if (least < kLeastCornerShare * sum && solveTangency(y, data.normal, true, corner, cornerNull)) {
+    w = corner;
+    nullBasis = cornerNull;
   }
-  Coeffs w = particular + nullBasis * a;
 
   // (3) The member of the pencil w + λL² through the arc midpoints (least squares in λ).
   const Vec3 face =

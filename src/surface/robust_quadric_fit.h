@@ -43,11 +43,13 @@ struct QuadricFit {
 /// 1. Hard: q(v_k) = 0 and Σ_k n_k·∇q(v_k) = 1 (fixes scale and orientation, excludes the
 ///    gradient-free solutions).
 /// 2. Tangency: minimise Σ_k |∇q(v_k) − (n_k·∇q(v_k)) n_k|² over what (1) leaves, damped toward
-///    the smallest coefficients. A quadric through three points with three prescribed tangent
-///    planes exists only when a compatibility condition holds (its section by the triangle's
-///    plane L is a conic through three points with three prescribed tangents: 6 conditions on
-///    5 degrees of freedom). Data sampled from any quadric satisfy it and the minimum is 0;
-///    generic data do not, and the minimum is the least corner-normal error.
+///    the smallest coefficients. Should that leave a corner's gradient (nearly) against its
+///    normal (normals that no quadric comes near), (1) is replaced by n_k·∇q(v_k) = 1/3 at
+///    every corner and (2) solved again. A quadric through three points with three prescribed
+///    tangent planes exists only when a compatibility condition holds (its section by the
+///    triangle's plane L is a conic through three points with three prescribed tangents: 6
+///    conditions on 5 degrees of freedom). Data sampled from any quadric satisfy it and the minimum
+///    is 0; generic data do not, and the minimum is the least corner-normal error.
 /// 3. (2) is blind to L² (it vanishes with its gradient on the triangle's plane): the member
 ///    q + λL² is chosen by least squares through the three arc midpoints, exact for a sphere.
 ///    Flat data leave (2) and (3) underdetermined; the damping then returns the plane itself.
