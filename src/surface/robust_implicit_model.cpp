@@ -158,6 +158,45 @@ void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
   }
 }
 
+// Where the fitted member leaves part of the triangle uncovered (some line along the face
+// normal n through f_p misses it, or meets it facing away), replaces it by the member of the
+// pencil whose quadratic form vanishes along n: a graph over the triangle's plane, which every
+// such line meets exactly once. Only fits of normals that no quadric comes near need this
+// (coarse, strongly curved or inconsistent data, as on the teapot); it keeps (1) and (2).
+void coverTriangle(const QuadraticPatch& parametric, const Vec3& n, const QuadricCoeffs& pencil,
+                   QuadricCoeffs& q) {
+  const auto alongNormal = [&n](const QuadricCoeffs& c) {
+    return c[0] * n.x() * n.x() + c[1] * n.y() * n.y() + c[2] * n.z() * n.z() +
+           c[3] * n.x() * n.y() + c[4] * n.x() * n.z() + c[5] * n.y() * n.z();
+  };
+  constexpr int kSteps = 6;
+  bool covered = true;
+  for (int j = 0; j <= kSteps && covered; ++j)
+    for (int i = 0; i + j <= kSteps && covered; ++i) {
+      const Vec3 x = parametric.position(double(i) / kSteps, double(j) / kSteps);
+      const double a = alongNormal(q), b = quadricGradient(q, x).dot(n), c = evalQuadric(q, x);
+      const double disc = b * b - 4.0 * a * c;
+      if (disc < 0.0) {
+        covered = false;
+        break;
+      }
+      // The root nearest to f_p and the orientation of the surface there.
+      const double h = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+      double s = std::abs(a) > 1e-14 * std::abs(b) ? h / a : 0.0;
+      if (h != 0.0 && std::abs(c / h) < std::abs(s)) s = c / h;
+      covered = quadricGradient(q, x + s * n).dot(n) > 0.0;
+    }
+  const double ap = alongNormal(pencil);
+  if (covered || !(std::abs(ap) > 0.0)) return;
+  const double lambda = -alongNormal(q) / ap;
+  double norm2 = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    q[i] += lambda * pencil[i];
+    norm2 += q[i] * q[i];
+  }
+  for (double& c : q) c /= std::sqrt(norm2);
+}
+
 Mat3 quadraticPart(const QuadricCoeffs& q) {
   Mat3 m;
   m << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
@@ -233,6 +272,9 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     for (int k = 0; k < 3; ++k)
       facing += quadricGradient(fit.q, data.position[k]).dot(data.normal[k]);
     patch.orientation = facing < 0.0 ? -1.0 : 1.0;
+    coverTriangle(quadraticPatch(m, controlPoints, t),
+                  patch.orientation * m.faceNormal(t) * patchOrientation(m, t), pencils[t],
+                  patch.q);
   });
   std::vector<Vec3> arcMidpoints(edges.size());
   for (size_t i = 0; i < edges.size(); ++i) arcMidpoints[i] = edges[i].arcMidpoint;
