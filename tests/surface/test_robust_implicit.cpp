@@ -551,6 +551,36 @@ TEST(RobustImplicitModel, CreaseKeepsEachSideAndSharesTheEdge) {
   }
 }
 
+TEST(RobustImplicitModel, InconsistentNormalsStillCoverTheTriangle) {
+  // Normals no quadric comes near (tilted up to ~65° at random): every line along the face
+  // normal through the triangle still meets the patch's quadric, facing the normals' side.
+  Rng rng(14);
+  for (int trial = 0; trial < 200; ++trial) {
+    auto mesh = std::make_shared<TriangleMesh>();
+    for (int k = 0; k < 3; ++k)
+      mesh->positions.emplace_back(uniform(rng, -1, 1), uniform(rng, -1, 1),
+                                   uniform(rng, -0.2, 0.2));
+    mesh->triangles = {Tri{0, 1, 2}};
+    const Vec3 face = mesh->faceNormal(0);
+    for (int k = 0; k < 3; ++k)
+      mesh->normals.push_back((face + 0.9 * randomUnit(rng)).normalized());
+    mesh->normalIndices = {Tri{0, 1, 2}};
+    const RobustImplicitModel model(mesh);
+    const QuadricPatch& patch = model.quadricPatches()[0];
+    const QuadricCoeffs& q = patch.q;
+    const Vec3 n = face * patch.orientation;
+    const double a = q[0] * n.x() * n.x() + q[1] * n.y() * n.y() + q[2] * n.z() * n.z() +
+                     q[3] * n.x() * n.y() + q[4] * n.x() * n.z() + q[5] * n.y() * n.z();
+    for (double u : {0.2, 0.4, 0.6})
+      for (double v : {0.2, 0.4 - 0.2 * (u > 0.5)}) {
+        const Vec3 x =
+            (1 - u - v) * mesh->positions[0] + u * mesh->positions[1] + v * mesh->positions[2];
+        const double b = quadricGradient(q, x).dot(n), c = evalQuadric(q, x);
+        EXPECT_GE(b * b - 4 * a * c, 0.0) << trial;
+      }
+  }
+}
+
 TEST(RobustImplicitModel, DegenerateTrianglesGiveFiniteOutput) {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(0, 1, 0),
