@@ -57,7 +57,6 @@ class RobustImplicitModel final : public SurfaceModel {
     Vec3 faceNormal;
     double cornerNormalErrorDeg = 0.0;
   };
-  SurfacePoint project(size_t t, double u, double v, bool& onQuadric) const;
   void clipToPatch(size_t t);
 
   std::vector<QuadricPatch> patches_;
