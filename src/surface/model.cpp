@@ -11,6 +11,7 @@
 #include "surface/phong_model.h"
 #include "surface/pn_model.h"
 #include "surface/quadric_patch.h"
+#include "surface/robust_implicit_model.h"
 
 namespace quadtri {
 
@@ -27,6 +28,7 @@ const std::vector<std::string>& modelNames() {
       "quadric-param",
       "quadric-implicit",
       "quadric-edges-eq42",
+      "quadric-implicit-robust",
       "phong",
       "pn",
       "nagata",
@@ -34,7 +36,8 @@ const std::vector<std::string>& modelNames() {
   return names;
 }
 
-std::unique_ptr<SurfaceModel> makeModel(std::string_view name, std::shared_ptr<const TriangleMesh> mesh) {
+std::unique_ptr<SurfaceModel> makeModel(std::string_view name,
+                                        std::shared_ptr<const TriangleMesh> mesh) {
   if (name == "flat") return std::make_unique<FlatModel>(std::move(mesh), false);
   if (name == "shading") return std::make_unique<FlatModel>(std::move(mesh), true);
   if (name == "quadric-edges")
@@ -43,6 +46,8 @@ std::unique_ptr<SurfaceModel> makeModel(std::string_view name, std::shared_ptr<c
   if (name == "quadric-implicit") return std::make_unique<ImplicitModel>(std::move(mesh));
   if (name == "quadric-edges-eq42")
     return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::ThesisEq42);
+  if (name == "quadric-implicit-robust")
+    return std::make_unique<RobustImplicitModel>(std::move(mesh));
   if (name == "phong") return std::make_unique<PhongModel>(std::move(mesh));
   if (name == "pn") return std::make_unique<PnModel>(std::move(mesh));
   if (name == "nagata") return std::make_unique<NagataModel>(std::move(mesh));
