@@ -19,7 +19,12 @@ Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p);
 struct QuadricPatch {
   static constexpr int kMaxPlanes = 6;
   QuadricCoeffs q{};
-  std::array<Vec4, kMaxPlanes> planes{};  ///< (n, d) with inside n·x + d >= 0
+  /// (n, d) with inside n·x + d >= 0 (Eigen leaves `{}` uninitialised: zero them explicitly).
+  std::array<Vec4, kMaxPlanes> planes = [] {
+    std::array<Vec4, kMaxPlanes> zero;
+    zero.fill(Vec4::Zero());
+    return zero;
+  }();
   int planeCount = 0;
   Bounds3 bounds;
   double orientation = 1.0;
