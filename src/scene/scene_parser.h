@@ -1,0 +1,41 @@
+// Internal to src/scene: the state of one scene parse and the per-plugin parsers that fill it.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "scene/scene_description.h"
+#include "scene/xml_file.h"
+
+namespace quadtri {
+
+/// What a parse has built so far, and the named objects a <ref> may point to.
+struct SceneParseState {
+  SceneDescription scene;
+  /// id -> index into scene.bsdfs, for <ref id="..."/>.
+  std::map<std::string, size_t, std::less<>> bsdfIds;
+  /// id -> location of every named object, so that ids stay unique.
+  std::map<std::string, std::string, std::less<>> idLocations;
+  /// The shared "diffuse 0.5" given to shapes without a BSDF, created on first use.
+  std::optional<size_t> defaultBsdf;
+
+  /// Records `id` (if non-empty) as declared at `at`; throws when it is already taken.
+  void declareId(const std::string& id, const XmlElement& at);
+};
+
+/// <sensor type="perspective"> with its nested <film> (and <rfilter>) and <sampler>.
+SensorDesc parseSensor(const XmlElement& element);
+/// <integrator>; adaptive's maxSamples is left 0 when not given (the caller fills it in).
+IntegratorDesc parseIntegrator(const XmlElement& element);
+/// <bsdf>, appended to state.scene.bsdfs (a twosided's nested BSDF first); returns its index.
+size_t parseBsdf(const XmlElement& element, SceneParseState& state);
+/// <ref id="..."/> naming a BSDF declared earlier; returns its index.
+size_t resolveBsdfRef(const XmlElement& ref, const SceneParseState& state);
+/// A top-level <emitter> (point or constant).
+EmitterDesc parseEmitter(const XmlElement& element);
+/// An <emitter type="area"> nested in a shape; returns its radiance.
+Color parseAreaEmitter(const XmlElement& element);
+/// <shape>, with its nested or referenced BSDF and optional area emitter.
+ShapeDesc parseShape(const XmlElement& element, SceneParseState& state);
+
+}  // namespace quadtri
