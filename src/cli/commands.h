@@ -9,5 +9,6 @@ namespace quadtri::cli {
 using Action = std::function<int()>;
 
 Action addMeshCommand(CLI::App& app);
+Action addRenderCommand(CLI::App& app);
 
 }  // namespace quadtri::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     commands.emplace_back(app.get_subcommands({})[before], std::move(action));
   };
   add(&quadtri::cli::addMeshCommand);
+  add(&quadtri::cli::addRenderCommand);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

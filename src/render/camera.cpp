@@ -30,15 +30,6 @@ double horizontalFov(double fov, FovAxis axis, double aspect) {
 
 }  // namespace
 
-FovAxis parseFovAxis(const std::string& name) {
-  if (name == "x") return FovAxis::X;
-  if (name == "y") return FovAxis::Y;
-  if (name == "diagonal") return FovAxis::Diagonal;
-  if (name == "smaller") return FovAxis::Smaller;
-  if (name == "larger") return FovAxis::Larger;
-  fail("fov_axis '{}': expected x, y, diagonal, smaller or larger", name);
-}
-
 PerspectiveCamera::PerspectiveCamera(const Params& params) : params_(params) {
   if (params.width <= 0 || params.height <= 0)
     fail("film size {}x{}: expected positive width and height", params.width, params.height);

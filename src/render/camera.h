@@ -1,18 +1,11 @@
 // The pinhole camera of Mitsuba 3's `perspective` sensor.
 #pragma once
 
-#include <string>
-
 #include "math/vec.h"
 #include "render/accel/accel.h"
+#include "scene/scene_description.h"
 
 namespace quadtri {
-
-/// Which image extent Mitsuba's `fov` measures.
-enum class FovAxis { X, Y, Diagonal, Smaller, Larger };
-
-/// Parses Mitsuba's fov_axis names (x, y, diagonal, smaller, larger); throws Error otherwise.
-FovAxis parseFovAxis(const std::string& name);
 
 /// A perspective camera in Mitsuba 3's convention: in camera space it looks along +z with +y
 /// up and +x to the image's *left* (lookat builds the frame (up×dir, dir×left, dir)), so image

@@ -1,7 +1,7 @@
 // The path tracer against scenes whose radiance is known in closed form.
 #include <gtest/gtest.h>
 
-#include "render/integrator/adaptive_integrator.h"
+#include "render/integrator/direct_integrator.h"
 #include "render/integrator/normals_integrator.h"
 #include "render/integrator/path_integrator.h"
 #include "render_fixtures.h"
@@ -94,6 +94,11 @@ TEST(PathIntegrator, EmittingDiffuseBoxBalancesByMis) {
   expectPixelsMatch(scene, PathIntegrator({-1, 4, false}), 2.0 / 0.6, 300);
   // With the emitters hidden from the camera, what is left is the reflected part ρL.
   expectPixelsMatch(scene, PathIntegrator({-1, 4, true}), 0.4 * 2.0 / 0.6, 300);
+  // Direct lighting stops after one reflection: Le(1 + ρ), with any mix of sample counts.
+  expectPixelsMatch(scene, DirectIntegrator({1, 1, false}), 2.0 * 1.4, 300);
+  expectPixelsMatch(scene, DirectIntegrator({3, 0, false}), 2.0 * 1.4, 100);
+  expectPixelsMatch(scene, DirectIntegrator({0, 2, false}), 2.0 * 1.4, 150);
+  expectPixelsMatch(scene, PathIntegrator({2, 4, false}), 2.0 * 1.4, 300);
 }
 
 // A diffuse floor under a sphere of radiance Le (a black diffuse sphere, so nothing bounces
@@ -111,12 +116,14 @@ TEST(PathIntegrator, SphereAreaLightOverFloor) {
   const double expected = 0.7 * 4.0 * 0.25 / 4.0;
   expectPixelsMatch(scene, PathIntegrator({2, 100, false}), expected, 2000);
   expectPixelsMatch(scene, PathIntegrator({-1, 5, false}), expected, 2000);
+  expectPixelsMatch(scene, DirectIntegrator({2, 1, false}), expected, 1000);
 }
 
 TEST(PathIntegrator, RejectsInvalidDepths) {
   EXPECT_THROW(PathIntegrator({0, 5, false}), Error);
   EXPECT_THROW(PathIntegrator({-2, 5, false}), Error);
   EXPECT_THROW(PathIntegrator({-1, 0, false}), Error);
+  EXPECT_THROW(DirectIntegrator({0, 0, false}), Error);
 }
 
 TEST(NormalsIntegrator, ColoursTheSphereNormal) {
