@@ -85,6 +85,7 @@ Chi2Result chi2Test(int resX, int resY, int sampleCount,
                     const std::function<std::optional<Vec2>()>& sample,
                     const std::function<double(const Vec2&)>& density) {
   static const GaussLegendre quad;
+  constexpr int kSubcells = 4;
   const int cells = resX * resY;
   std::vector<double> observed(cells + 1, 0.0), expected(cells + 1, 0.0);
   for (int i = 0; i < sampleCount; ++i) {
@@ -101,12 +102,18 @@ Chi2Result chi2Test(int resX, int resY, int sampleCount,
   double total = 0.0;
   for (int iy = 0; iy < resY; ++iy)
     for (int ix = 0; ix < resX; ++ix) {
+      // Composite rule: narrow lobes (GGX at α = 0.1) need sub-cells a few degrees wide.
       double integral = 0.0;
-      for (int a = 0; a < GaussLegendre::kPoints; ++a)
-        for (int b = 0; b < GaussLegendre::kPoints; ++b) {
-          const Vec2 p((ix + quad.nodes[a]) / resX, (iy + quad.nodes[b]) / resY);
-          integral += quad.weights[a] * quad.weights[b] * density(p);
-        }
+      for (int sx = 0; sx < kSubcells; ++sx)
+        for (int sy = 0; sy < kSubcells; ++sy)
+          for (int a = 0; a < GaussLegendre::kPoints; ++a)
+            for (int b = 0; b < GaussLegendre::kPoints; ++b) {
+              const double x = (sx + quad.nodes[a]) / kSubcells;
+              const double y = (sy + quad.nodes[b]) / kSubcells;
+              integral += quad.weights[a] * quad.weights[b] *
+                          density(Vec2((ix + x) / resX, (iy + y) / resY));
+            }
+      integral /= kSubcells * kSubcells;
       expected[iy * resX + ix] = integral * cellArea * sampleCount;
       total += integral * cellArea;
     }
@@ -144,6 +151,22 @@ Chi2Result chi2Test(int resX, int resY, int sampleCount,
   result.pValue = result.dof > 0 ? chi2Survival(result.statistic, result.dof) : 1.0;
   result.report = fmt::format("chi2 = {:.2f}, dof = {}, p = {:.3g}, integral of density = {:.6f}",
                               result.statistic, result.dof, result.pValue, total);
+  // The cells that contribute most, to tell a wrong lobe from a wrong normalization.
+  std::vector<int> worst;
+  for (int i = 0; i <= cells; ++i)
+    if (expected[i] >= kMinExpected) worst.push_back(i);
+  const auto contribution = [&](int i) {
+    return (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
+  };
+  std::sort(worst.begin(), worst.end(),
+            [&](int a, int b) { return contribution(a) > contribution(b); });
+  for (size_t j = 0; j < std::min<size_t>(5, worst.size()); ++j) {
+    const int i = worst[j];
+    result.report += i == cells ? fmt::format("\n  rejected draws: observed {}, expected {:.1f}",
+                                              observed[i], expected[i])
+                                : fmt::format("\n  cell ({}, {}): observed {}, expected {:.1f}",
+                                              i % resX, i / resX, observed[i], expected[i]);
+  }
   return result;
 }
 

@@ -33,10 +33,11 @@ struct Chi2Result {
 
 /// Chi-square test of `sampleCount` draws of `sample` (points of the parameter square [0,1]²,
 /// nullopt for a draw the sampler rejects) against `density` (per unit parameter area). Expected
-/// counts per cell of a resX × resY grid come from 8×8-point Gauss–Legendre quadrature of the
-/// density (nodes strictly inside cells, so densities that jump on cell edges integrate
-/// exactly); the rejected draws form one more cell whose expected count is N·(1 − ∫density).
-/// Cells expecting fewer than 5 are pooled; a draw in a cell of zero density fails outright.
+/// counts per cell of a resX × resY grid come from 8×8-point Gauss–Legendre quadrature on 4×4
+/// sub-cells of the density (nodes strictly inside cells, so densities that jump on cell edges
+/// integrate exactly); the rejected draws form one more cell whose expected count is N·(1 −
+/// ∫density). Cells expecting fewer than 5 are pooled; a draw in a cell of zero density fails
+/// outright.
 Chi2Result chi2Test(int resX, int resY, int sampleCount,
                     const std::function<std::optional<Vec2>()>& sample,
                     const std::function<double(const Vec2&)>& density);
