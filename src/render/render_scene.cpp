@@ -191,12 +191,13 @@ Ray RenderScene::spawnRay(const SurfaceInteraction& si, const Vec3& direction) c
   return ray;
 }
 
-Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target) const {
+Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetNormal) const {
   Ray ray = spawnRay(si, safeNormalized(target - si.p));
-  const Vec3 toTarget = target - ray.origin;
-  const double dist = toTarget.norm();
-  ray.direction = safeNormalized(toTarget);
-  ray.tfar = std::max(0.0, dist - floatErrorOffset(maxAbs(target)));
+  const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
+  const Vec3 end = target + side * floatErrorOffset(maxAbs(target)) * targetNormal;
+  const Vec3 toEnd = end - ray.origin;
+  ray.direction = safeNormalized(toEnd);
+  ray.tfar = toEnd.norm();
   return ray;
 }
 

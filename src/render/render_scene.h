@@ -75,8 +75,10 @@ class RenderScene {
   /// geometric normal to the side `direction` leaves on, so it cannot find the surface it
   /// starts on (the float error of the hit is below the offset) yet does not skip a nearby one.
   Ray spawnRay(const SurfaceInteraction& si, const Vec3& direction) const;
-  /// A shadow ray from `si` to `target`, stopping short of `target` by its own float error.
-  Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target) const;
+  /// A shadow ray from `si` to `target` on a surface of unit normal `targetNormal` (zero for a
+  /// point in space): the target too is pushed off its surface, towards the ray's side, by its
+  /// float error, so a grazing shadow ray cannot find the light's own surface before its end.
+  Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetNormal) const;
 
   const PerspectiveCamera& camera() const;
   const LightSampler& lightSampler() const { return lightSampler_; }

@@ -11,6 +11,7 @@
 #include "render/chi2.h"
 #include "render/integrator/integrator.h"
 #include "render/render_scene.h"
+#include "render/sampling/warp.h"
 #include "render/renderer.h"
 #include "surface/model.h"
 

@@ -1,6 +1,7 @@
 // The path tracer against scenes whose radiance is known in closed form.
 #include <gtest/gtest.h>
 
+#include "render/bsdf/dielectric.h"
 #include "render/integrator/direct_integrator.h"
 #include "render/integrator/normals_integrator.h"
 #include "render/integrator/path_integrator.h"
@@ -39,6 +40,15 @@ TEST(PathIntegrator, WhiteFurnaceScaledEllipsoid) {
   toWorld.diagonal().head<3>() = Vec3(1.2, 0.6, 0.9);
   RenderScene scene;
   scene.addSphere(Vec3::Zero(), 1.0, toWorld, false, diffuse(1.0), std::nullopt, "ellipsoid");
+  expectWhiteFurnace(scene);
+}
+
+// A smooth glass sphere neither absorbs nor emits: in the furnace every path ends in the
+// environment carrying radiance 1, whatever it refracted or reflected on the way.
+TEST(PathIntegrator, GlassSphereInFurnaceConservesEnergy) {
+  RenderScene scene;
+  scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false, std::make_shared<Dielectric>(1.5, 1.0), std::nullopt,
+                  "glass");
   expectWhiteFurnace(scene);
 }
 
@@ -95,9 +105,12 @@ TEST(PathIntegrator, EmittingDiffuseBoxBalancesByMis) {
   // With the emitters hidden from the camera, what is left is the reflected part ρL.
   expectPixelsMatch(scene, PathIntegrator({-1, 4, true}), 0.4 * 2.0 / 0.6, 300);
   // Direct lighting stops after one reflection: Le(1 + ρ), with any mix of sample counts.
-  expectPixelsMatch(scene, DirectIntegrator({1, 1, false}), 2.0 * 1.4, 300);
-  expectPixelsMatch(scene, DirectIntegrator({3, 0, false}), 2.0 * 1.4, 100);
-  expectPixelsMatch(scene, DirectIntegrator({0, 2, false}), 2.0 * 1.4, 150);
+  // (Light sampling alone is left out here: near the box's edges its estimator is unbiased but
+  // heavy-tailed, so a Z-test of a few hundred samples would reject it; see SphereAreaLight.)
+  for (const DirectIntegrator::Params& p : {DirectIntegrator::Params{1, 1, false}, {2, 1, false}, {0, 2, false}}) {
+    SCOPED_TRACE(DirectIntegrator(p).toString());
+    expectPixelsMatch(scene, DirectIntegrator(p), 2.0 * 1.4, 200);
+  }
   expectPixelsMatch(scene, PathIntegrator({2, 4, false}), 2.0 * 1.4, 300);
 }
 
@@ -117,6 +130,8 @@ TEST(PathIntegrator, SphereAreaLightOverFloor) {
   expectPixelsMatch(scene, PathIntegrator({2, 100, false}), expected, 2000);
   expectPixelsMatch(scene, PathIntegrator({-1, 5, false}), expected, 2000);
   expectPixelsMatch(scene, DirectIntegrator({2, 1, false}), expected, 1000);
+  expectPixelsMatch(scene, DirectIntegrator({2, 0, false}), expected, 1000);
+  expectPixelsMatch(scene, DirectIntegrator({0, 2, false}), expected, 4000);
 }
 
 TEST(PathIntegrator, RejectsInvalidDepths) {

@@ -16,6 +16,7 @@ struct LightSample {
   double distance = 0.0;  ///< to the light point (infinite for the environment)
   double pdf = 0.0;       ///< solid-angle density at the reference point (1 for delta lights)
   Vec3 point;             ///< on the light (meaningless for the environment)
+  Vec3 normal = Vec3::Zero();  ///< unit geometric normal at `point`; zero for point lights
   bool delta = false;     ///< a Dirac light: no BSDF sampling strategy can hit it
 };
 

@@ -44,6 +44,7 @@ std::optional<LightSample> MeshAreaEmitter::sampleLi(const Vec3& ref, const Vec2
   s.pdf = dist2 / (totalArea_ * cosLight);
   s.radiance = radiance_;
   s.point = point;
+  s.normal = normal;
   return s;
 }
 

@@ -24,6 +24,7 @@ std::optional<LightSample> SphereAreaEmitter::sampleLi(const Vec3& ref, const Ve
   s.distance = cap.distance;
   s.point = ref + cap.distance * cap.direction;
   const Vec3 normal = orientation_ * (s.point - center_) / radius_;
+  s.normal = normal;
   s.radiance = eval(normal, -s.direction);
   if (isBlack(s.radiance)) return std::nullopt;
   s.pdf = cap.pdf;

@@ -69,7 +69,7 @@ Color PathIntegrator::radiance(const RenderScene& scene, const Ray& cameraRay, P
         const Color f = bsdf.eval(wi, wo);
         if (!isBlack(f)) {
           const Ray shadow = std::isinf(ls->distance) ? scene.spawnRay(*si, ls->direction)
-                                                      : scene.spawnRayTo(*si, ls->point);
+                                                      : scene.spawnRayTo(*si, ls->point, ls->normal);
           ++rays;
           if (!scene.occluded(shadow)) {
             const double lightPdf = choice.probability * ls->pdf;
