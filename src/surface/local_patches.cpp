@@ -1,0 +1,57 @@
+#include "surface/local_patches.h"
+
+#include <nlohmann/json.hpp>
+
+#include "mesh/topology.h"
+#include "surface/edge_curves.h"
+
+namespace quadtri {
+
+LocalTriangle localTriangle(const TriangleMesh& mesh, size_t t) {
+  LocalTriangle tri;
+  for (int k = 0; k < 3; ++k) {
+    tri.p[k] = mesh.corner(t, k);
+    tri.n[k] = safeNormalized(mesh.cornerNormal(t, k), mesh.faceNormal(t));
+  }
+  return tri;
+}
+
+bool edgesShareNormals(const TriangleMesh& mesh) {
+  if (!mesh.hasNormals()) return true;
+  const MeshTopology topo(mesh);
+  for (const Edge& edge : topo.edges) {
+    // Normal indices of the first side at endpoints a and b; every other side must match them.
+    uint32_t na = 0, nb = 0;
+    bool first = true;
+    for (auto [t, k] : edge.sides) {
+      const bool forward = mesh.triangles[t][k] == edge.a;
+      const uint32_t ia = mesh.normalIndices[t][forward ? k : (k + 1) % 3];
+      const uint32_t ib = mesh.normalIndices[t][forward ? (k + 1) % 3 : k];
+      if (first) {
+        na = ia;
+        nb = ib;
+        first = false;
+      } else if (mesh.normals[ia] != mesh.normals[na] || mesh.normals[ib] != mesh.normals[nb]) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v, const Vec3& du,
+                         const Vec3& dv) {
+  const Vec3 cross = patchOrientation(mesh, t) * du.cross(dv);
+  const double len = cross.norm();
+  // Relative threshold: below it the cross product is round-off, not a direction.
+  if (len > 1e-14 * du.norm() * dv.norm() && std::isfinite(len)) return cross / len;
+  const Vec3 blend = (1.0 - u - v) * mesh.cornerNormal(t, 0) + u * mesh.cornerNormal(t, 1) +
+                     v * mesh.cornerNormal(t, 2);
+  return safeNormalized(blend, mesh.faceNormal(t));
+}
+
+nlohmann::json vecJson(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+}  // namespace quadtri

@@ -1,0 +1,74 @@
+#include "surface/nagata_model.h"
+
+#include <nlohmann/json.hpp>
+
+#include "surface/local_patches.h"
+
+namespace quadtri {
+namespace {
+
+bool lexLess(const Vec3& a, const Vec3& b) {
+  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+}
+
+// (1 − cos 0.1°)/2: Δc (and 1 − Δc) below this count as parallel (opposite) normals.
+const double kParallelDeltaC = 0.5 * (1.0 - std::cos(0.1 * kPi / 180.0));
+
+}  // namespace
+
+Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const Vec3& n1In) {
+  // The formula is symmetric; a canonical order makes both sides of an edge agree bit for bit.
+  const bool swap = lexLess(x1In, x0In) || (x1In == x0In && lexLess(n1In, n0In));
+  const Vec3& x0 = swap ? x1In : x0In;
+  const Vec3& x1 = swap ? x0In : x1In;
+  const Vec3& n0 = swap ? n1In : n0In;
+  const Vec3& n1 = swap ? n0In : n1In;
+  const Vec3 dx = x1 - x0;
+  const Vec3 v = 0.5 * (n0 + n1);
+  const Vec3 dv = 0.5 * (n0 - n1);
+  // For unit normals Δc = n0·Δv = |Δv|² and 1 − Δc = |v|²; the squared norms avoid the
+  // cancellation in 1 − n0·n1 when the normals are close.
+  const double deltaC = dv.squaredNorm();
+  const double oneMinusDeltaC = v.squaredNorm();
+  if (deltaC <= kParallelDeltaC || oneMinusDeltaC <= kParallelDeltaC) return Vec3::Zero();
+  return (dx.dot(dv) / oneMinusDeltaC) * v + (dx.dot(v) / deltaC) * dv;
+}
+
+NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
+    : SurfaceModel(std::move(mesh)), sharesEdges_(edgesShareNormals(this->mesh())) {
+  const TriangleMesh& m = this->mesh();
+  curvatures_.resize(m.triangleCount());
+  patches_.resize(m.triangleCount());
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    const LocalTriangle tri = localTriangle(m, t);
+    QuadraticPatch& patch = patches_[t];
+    for (int k = 0; k < 3; ++k) {
+      const int l = (k + 1) % 3;
+      const Vec3 c = nagataCurvature(tri.p[k], tri.n[k], tri.p[l], tri.n[l]);
+      curvatures_[t][k] = c;
+      patch.v[k] = tri.p[k];
+      // x(t) = x0 + (Δx − c) t + c t² in Bernstein form: control point x0 + (Δx − c)/2.
+      patch.b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
+    }
+  }
+}
+
+SurfacePoint NagataModel::evaluate(size_t t, double u, double v) const {
+  const QuadraticPatch& patch = patches_[t];
+  Vec3 du, dv;
+  patch.derivatives(u, v, du, dv);
+  return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
+}
+
+nlohmann::json NagataModel::patchJson(size_t t) const {
+  const QuadraticPatch& patch = patches_[t];
+  nlohmann::json out;
+  for (int k = 0; k < 3; ++k) {
+    out["vertices"].push_back(vecJson(patch.v[k]));
+    out["curvature"].push_back(vecJson(curvatures_[t][k]));
+    out["control_points"].push_back(vecJson(patch.b[k]));
+  }
+  return out;
+}
+
+}  // namespace quadtri

@@ -1,0 +1,138 @@
+#include "surface/pn_model.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "surface/local_patches.h"
+
+namespace quadtri {
+namespace {
+
+// Index (i, j, k) with i + j + k = 3 of the edge point next to corner a towards corner b.
+std::array<int, 3> edgeIndex(int a, int b) {
+  std::array<int, 3> e = {0, 0, 0};
+  e[a] = 2;
+  e[b] = 1;
+  return e;
+}
+
+}  // namespace
+
+PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm) {
+  PnPatch patch;
+  auto at = [&](const std::array<int, 3>& e) -> Vec3& { return patch.b[e[0]][e[1]]; };
+  Vec3 edgeSum = Vec3::Zero();
+  for (int a = 0; a < 3; ++a) {
+    std::array<int, 3> c = {0, 0, 0};
+    c[a] = 3;
+    at(c) = p[a];
+    for (int b = 0; b < 3; ++b) {
+      if (b == a) continue;
+      // Subtracting w_ab n_a, w_ab = (p_b − p_a)·n_a, projects (2p_a + p_b)/3 onto a's tangent
+      // plane.
+      const double w = (p[b] - p[a]).dot(nrm[a]);
+      const Vec3 point = (2.0 * p[a] + p[b] - w * nrm[a]) / 3.0;
+      at(edgeIndex(a, b)) = point;
+      edgeSum += point;
+    }
+  }
+  const Vec3 e = edgeSum / 6.0;
+  const Vec3 centroid = (p[0] + p[1] + p[2]) / 3.0;
+  patch.b[1][1] = e + 0.5 * (e - centroid);
+
+  for (int a = 0; a < 3; ++a) {
+    std::array<int, 3> c = {0, 0, 0};
+    c[a] = 2;
+    patch.n[c[0]][c[1]] = nrm[a];
+    const int b = (a + 1) % 3;
+    const Vec3 edge = p[b] - p[a];
+    const double len2 = edge.squaredNorm();
+    const Vec3 sum = nrm[a] + nrm[b];
+    // A zero-length edge has no mirror plane: keep the plain sum there.
+    const double vab = len2 > 0.0 ? 2.0 * edge.dot(sum) / len2 : 0.0;
+    std::array<int, 3> m = {0, 0, 0};
+    m[a] = 1;
+    m[b] = 1;
+    // Opposite normals across the edge make h vanish: that term then drops out of the field.
+    patch.n[m[0]][m[1]] = safeNormalized(sum - vab * edge, Vec3::Zero());
+  }
+  return patch;
+}
+
+Vec3 PnPatch::position(double u, double v) const {
+  const double l[3] = {1.0 - u - v, u, v};
+  Vec3 sum = Vec3::Zero();
+  for (int i = 0; i <= 3; ++i)
+    for (int j = 0; i + j <= 3; ++j) {
+      const int k = 3 - i - j;
+      // Multinomial 3!/(i!j!k!): 1 at corners, 3 on edges, 6 at the centre.
+      const double m = (i == 3 || j == 3 || k == 3) ? 1.0 : (i == 1 && j == 1) ? 6.0 : 3.0;
+      sum += m * std::pow(l[0], i) * std::pow(l[1], j) * std::pow(l[2], k) * b[i][j];
+    }
+  return sum;
+}
+
+void PnPatch::derivatives(double u, double v, Vec3& du, Vec3& dv) const {
+  const double l[3] = {1.0 - u - v, u, v};
+  du = Vec3::Zero();
+  dv = Vec3::Zero();
+  for (int i = 0; i <= 2; ++i)
+    for (int j = 0; i + j <= 2; ++j) {
+      const int k = 2 - i - j;
+      // Quadratic Bernstein 2!/(i!j!k!): 1 at corners, 2 on edges.
+      const double m = (i == 2 || j == 2 || k == 2) ? 1.0 : 2.0;
+      const double basis = m * std::pow(l[0], i) * std::pow(l[1], j) * std::pow(l[2], k);
+      du += basis * (b[i][j + 1] - b[i + 1][j]);
+      dv += basis * (b[i][j] - b[i + 1][j]);  // b_{i,j,k+1} − b_{i+1,j,k}
+    }
+  du *= 3.0;
+  dv *= 3.0;
+}
+
+Vec3 PnPatch::normalField(double u, double v) const {
+  const double l[3] = {1.0 - u - v, u, v};
+  Vec3 sum = Vec3::Zero();
+  for (int i = 0; i <= 2; ++i)
+    for (int j = 0; i + j <= 2; ++j)
+      sum += std::pow(l[0], i) * std::pow(l[1], j) * std::pow(l[2], 2 - i - j) * n[i][j];
+  return sum;
+}
+
+PnModel::PnModel(std::shared_ptr<const TriangleMesh> mesh)
+    : SurfaceModel(std::move(mesh)), sharesEdges_(edgesShareNormals(this->mesh())) {
+  const TriangleMesh& m = this->mesh();
+  patches_.reserve(m.triangleCount());
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    const LocalTriangle tri = localTriangle(m, t);
+    patches_.push_back(PnPatch::fromCorners(tri.p, tri.n));
+  }
+}
+
+SurfacePoint PnModel::evaluate(size_t t, double u, double v) const {
+  const PnPatch& patch = patches_[t];
+  Vec3 du, dv;
+  patch.derivatives(u, v, du, dv);
+  return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
+}
+
+Vec3 PnModel::pnNormal(size_t t, double u, double v) const {
+  const Vec3 field = patches_[t].normalField(u, v);
+  const double len = field.norm();
+  if (len > 1e-12 && std::isfinite(len)) return field / len;
+  return evaluate(t, u, v).normal;
+}
+
+nlohmann::json PnModel::patchJson(size_t t) const {
+  const PnPatch& patch = patches_[t];
+  nlohmann::json out;
+  for (int i = 0; i <= 3; ++i)
+    for (int j = 0; i + j <= 3; ++j)
+      out["b"][fmt::format("b{}{}{}", i, j, 3 - i - j)] = vecJson(patch.b[i][j]);
+  for (int i = 0; i <= 2; ++i)
+    for (int j = 0; i + j <= 2; ++j)
+      out["n"][fmt::format("n{}{}{}", i, j, 2 - i - j)] = vecJson(patch.n[i][j]);
+  return out;
+}
+
+}  // namespace quadtri
