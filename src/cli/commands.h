@@ -8,6 +8,7 @@ namespace quadtri::cli {
 
 using Action = std::function<int()>;
 
+Action addAnalyzeCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
 

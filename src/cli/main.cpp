@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     quadtri::cli::Action action = registerFn(app);
     commands.emplace_back(app.get_subcommands({})[before], std::move(action));
   };
+  add(&quadtri::cli::addAnalyzeCommand);
   add(&quadtri::cli::addMeshCommand);
   add(&quadtri::cli::addRenderCommand);
   try {

@@ -34,6 +34,7 @@ class Accel {
  public:
   struct Options {
     bool robust = false;  ///< RTC_SCENE_FLAG_ROBUST: watertight traversal (crack-rate analysis)
+    bool collectHits = false;  ///< enables allHits() (an Embree context filter function)
   };
   explicit Accel(const Options& options);
   Accel() : Accel(Options{}) {}
@@ -52,9 +53,15 @@ class Accel {
   RayHit intersect(const Ray& ray) const;
   /// True when anything is hit in (ray.tnear, ray.tfar).
   bool occluded(const Ray& ray) const;
+  /// Every hit in (ray.tnear, ray.tfar), unordered, appended to `hits`: each candidate Embree
+  /// finds is recorded and rejected, so none hides another. Needs Options.collectHits.
+  void allHits(const Ray& ray, std::vector<RayHit>& hits) const;
 
   /// Bytes of geometry buffers and patch records handed to Embree.
   size_t geometryBytes() const;
+  /// Bounds of everything added, as Embree holds it (floats, patch bounds slightly inflated).
+  Bounds3 bounds() const;
+  bool robust() const;
 
  private:
   struct Impl;

@@ -1,0 +1,115 @@
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include "analysis/crack_rate.h"
+#include "math/error.h"
+#include "mesh/shapes.h"
+#include "render/accel/model_geometry.h"
+#include "render/sampling/rng.h"
+
+namespace quadtri {
+namespace {
+
+CrackRateOptions lines(size_t count, uint64_t seed = 1) {
+  CrackRateOptions o;
+  o.lines = count;
+  o.seed = seed;
+  return o;
+}
+
+std::shared_ptr<const TriangleMesh> icosphere(int level, double scale = 1.0) {
+  ShapeParams p;
+  p.level = level;
+  TriangleMesh mesh = makeBuiltin("icosphere", p).mesh;
+  for (Vec3& x : mesh.positions) x *= scale;
+  return std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
+double flatCrackRate(std::shared_ptr<const TriangleMesh> mesh, const CrackRateOptions& options) {
+  const std::unique_ptr<SurfaceModel> model = makeModel("flat", std::move(mesh));
+  Accel accel(Accel::Options{true, true});
+  addModelGeometry(accel, *model, Tessellation{});
+  accel.commit();
+  return crackRate(accel, options);
+}
+
+TEST(CrackRate, FlatClosedIcospheresAreWatertight) {
+  for (int level = 0; level <= 3; ++level)
+    EXPECT_EQ(flatCrackRate(icosphere(level), lines(50000, uint64_t(level))), 0.0)
+        << "level " << level;
+}
+
+TEST(CrackRate, ScaleInvariant) {
+  for (const double scale : {1e-6, 1e6})
+    EXPECT_EQ(flatCrackRate(icosphere(2, scale), lines(20000)), 0.0) << scale;
+}
+
+// Box-line measure of a flat hole: the probability that a line through a uniform point of the
+// box with a uniform direction d crosses it is (1/V) E_d[∫_hole |d·n| L(y, d) dA(y)], with
+// L(y, d) the chord of the box through y along d. Estimated here by Monte Carlo.
+double holeCrossingProbability(const Vec3& a, const Vec3& b, const Vec3& c, const Bounds3& box,
+                               uint64_t seed) {
+  const Vec3 cross = (b - a).cross(c - a);
+  const double area = 0.5 * cross.norm();
+  const Vec3 n = cross.normalized();
+  const Vec3 size = box.diagonal();
+  Pcg32 rng(seed, 99);
+  const int samples = 400000;
+  double sum = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const double z = 1.0 - 2.0 * rng.nextDouble(), phi = 2.0 * kPi * rng.nextDouble();
+    const double r = std::sqrt(1.0 - z * z);
+    const Vec3 d(r * std::cos(phi), r * std::sin(phi), z);
+    double u = rng.nextDouble(), v = rng.nextDouble();
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    const Vec3 y = (1 - u - v) * a + u * b + v * c;
+    double enter = -kInfinity, leave = kInfinity;
+    for (int k = 0; k < 3; ++k) {
+      const double t0 = (box.lo[k] - y[k]) / d[k], t1 = (box.hi[k] - y[k]) / d[k];
+      enter = std::max(enter, std::min(t0, t1));
+      leave = std::min(leave, std::max(t0, t1));
+    }
+    sum += std::abs(d.dot(n)) * (leave - enter);
+  }
+  return area * sum / samples / (size.x() * size.y() * size.z());
+}
+
+TEST(CrackRate, OneMissingTriangleMatchesTheHolesLineMeasure) {
+  // A convex surface with one face removed: a line is cracked exactly when it passes through
+  // the hole, so the rate is the hole's box-line measure (a binomial proportion).
+  TriangleMesh mesh = *icosphere(2);
+  const Vec3 a = mesh.corner(0, 0), b = mesh.corner(0, 1), c = mesh.corner(0, 2);
+  mesh.triangles.erase(mesh.triangles.begin());
+  mesh.normalIndices.erase(mesh.normalIndices.begin());
+  const auto holed = std::make_shared<const TriangleMesh>(std::move(mesh));
+  const std::unique_ptr<SurfaceModel> model = makeModel("flat", holed);
+  Accel accel(Accel::Options{true, true});
+  addModelGeometry(accel, *model, Tessellation{});
+  accel.commit();
+  const CrackRateOptions options = lines(100000, 3);
+  Bounds3 box = accel.bounds();
+  box.inflate(options.boxMargin * box.diagonal().norm());
+  const double expected = holeCrossingProbability(a, b, c, box, 5);
+  const double rate = crackRate(accel, options);
+  const double sigma = std::sqrt(expected * (1 - expected) / double(options.lines));
+  EXPECT_GT(expected, 1e-3);  // the hole is ~1/320 of the sphere: a clearly measurable rate
+  EXPECT_NEAR(rate, expected, 4.0 * sigma + 0.01 * expected);
+  // Per-line seeds: the same lines, hence the same rate, on one thread.
+  tbb::task_arena single(1);
+  EXPECT_EQ(single.execute([&] { return crackRate(accel, options); }), rate);
+}
+
+TEST(CrackRate, NeedsRobustCollectingScene) {
+  const std::unique_ptr<SurfaceModel> model = makeModel("flat", icosphere(0));
+  Accel plain;
+  addModelGeometry(plain, *model, Tessellation{});
+  plain.commit();
+  EXPECT_THROW(crackRate(plain), Error);
+  Accel robustOnly(Accel::Options{true, false});
+  addModelGeometry(robustOnly, *model, Tessellation{});
+  robustOnly.commit();
+  EXPECT_THROW(crackRate(robustOnly, lines(10)), Error);
+}
+
+}  // namespace
+}  // namespace quadtri

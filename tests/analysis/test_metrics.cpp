@@ -1,0 +1,129 @@
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/metrics.h"
+#include "math/error.h"
+#include "mesh/shapes.h"
+
+namespace quadtri {
+namespace {
+
+// The unit-circumradius icosahedron: inradius sqrt((5 + 2√5)/15), dihedral angle
+// acos(−√5/3), so adjacent face normals differ by acos(√5/3) = 41.81°.
+const double kInradius = std::sqrt((5.0 + 2.0 * std::sqrt(5.0)) / 15.0);
+const double kNormalJumpDeg = std::acos(std::sqrt(5.0) / 3.0) * 180.0 / kPi;
+
+TEST(Metrics, FlatAndShadingOnTheIcosahedron) {
+  const BuiltinMesh ico = makeBuiltin("icosahedron");
+  const auto mesh = std::make_shared<const TriangleMesh>(ico.mesh);
+  EXPECT_NEAR(kInradius, 0.7947, 1e-4);
+  for (const char* name : {"flat", "shading"}) {
+    const std::unique_ptr<SurfaceModel> model = makeModel(name, mesh);
+    AnalysisOptions options;
+    options.crack.lines = 20000;
+    const ModelMetrics m = analyzeModel(*model, "icosahedron", ico.truth, 0.5, options);
+    EXPECT_EQ(m.model, name);
+    EXPECT_EQ(m.triangles, 20u);
+    EXPECT_EQ(m.primitives, 20u);
+    // 12 float3 positions and 20 uint3 triangles; `shading` adds its 12 float3 normals.
+    EXPECT_EQ(m.memoryBytes, std::string(name) == "flat" ? 384u : 528u);
+    EXPECT_EQ(m.convertSeconds, 0.5);
+    EXPECT_EQ(m.vertexPositionError, 0.0);
+    // The face normal points at the centroid; the vertex normal at the vertex.
+    EXPECT_NEAR(m.vertexNormalErrorDeg, std::acos(kInradius) * 180.0 / kPi, 1e-9);
+    ASSERT_TRUE(m.c0Gap && m.c1AngleDeg && m.crackRate && m.truthDistance);
+    EXPECT_EQ(*m.c0Gap, 0.0);
+    EXPECT_NEAR(*m.c1AngleDeg, kNormalJumpDeg, 1e-9);
+    EXPECT_NEAR(*m.c1AngleDeg, 41.81, 0.005);
+    EXPECT_EQ(*m.crackRate, 0.0);
+    // The face centroids (on the lattice) are the points farthest inside the unit sphere.
+    EXPECT_NEAR(*m.truthDistance, 1.0 - kInradius, 1e-12);
+  }
+}
+
+TEST(Metrics, EdgeSamplesMatchAcrossOppositeTraversals) {
+  // Linear patches of a welded mesh agree along every shared edge only if each side maps the
+  // edge parameter in its own direction; mixed windings exercise both mappings.
+  ShapeParams p;
+  p.level = 2;
+  TriangleMesh mesh = makeBuiltin("icosphere", p).mesh;
+  for (size_t t = 0; t < mesh.triangleCount(); t += 3)
+    std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+  mesh.normalIndices = mesh.triangles;
+  const auto shared = std::make_shared<const TriangleMesh>(std::move(mesh));
+  const std::unique_ptr<SurfaceModel> model = makeModel("flat", shared);
+  const std::optional<EdgeContinuity> c = edgeContinuity(*model, MeshTopology(*shared), 7);
+  ASSERT_TRUE(c);
+  // A reversed mapping would be off by up to a whole edge; rounding is all that remains.
+  EXPECT_LT(c->c0Gap, 1e-14);
+}
+
+TEST(Metrics, ScaleInvariant) {
+  ShapeParams p;
+  p.level = 1;
+  const BuiltinMesh sphere = makeBuiltin("icosphere", p);
+  const auto unit = std::make_shared<const TriangleMesh>(sphere.mesh);
+  TriangleMesh big = sphere.mesh;
+  for (Vec3& x : big.positions) x *= 1e8;
+  const auto scaled = std::make_shared<const TriangleMesh>(std::move(big));
+  const std::unique_ptr<SurfaceModel> a = makeModel("shading", unit),
+                                      b = makeModel("shading", scaled);
+  EXPECT_EQ(vertexPositionError(*b), 0.0);
+  EXPECT_NEAR(vertexNormalErrorDeg(*a), vertexNormalErrorDeg(*b), 1e-9);
+  const MeshTopology topo(*unit);
+  EXPECT_NEAR(edgeContinuity(*a, topo)->c1AngleDeg, edgeContinuity(*b, topo)->c1AngleDeg, 1e-9);
+  const AnalyticSurface bigSphere{AnalyticSurface::Kind::Sphere, 1e8};
+  EXPECT_NEAR(truthDistance(*a, *sphere.truth), truthDistance(*b, bigSphere), 1e-9);
+}
+
+TEST(Metrics, OpenMeshHasNoCrackRateAndLoneTriangleNoEdgeMetrics) {
+  const BuiltinMesh tri = makeBuiltin("triangle");
+  const std::unique_ptr<SurfaceModel> model =
+      makeModel("flat", std::make_shared<const TriangleMesh>(tri.mesh));
+  const ModelMetrics m = analyzeModel(*model, "triangle", std::nullopt, 0.0);
+  EXPECT_FALSE(m.c0Gap || m.c1AngleDeg || m.crackRate || m.truthDistance);
+  const nlohmann::json j = toJson(m);
+  for (const char* key : {"c0_gap", "c1_angle_deg", "crack_rate", "truth_distance"})
+    EXPECT_TRUE(j.at(key).is_null()) << key;
+}
+
+TEST(Metrics, JsonAndTableCarryEveryKey) {
+  ModelMetrics m;
+  m.model = "flat";
+  m.mesh = "x.obj";
+  m.triangles = 4;
+  m.primitives = 4;
+  m.memoryBytes = 96;
+  m.c0Gap = 0.25;
+  const nlohmann::json j = toJson(m);
+  const std::vector<std::string> keys = {"model",
+                                         "mesh",
+                                         "triangles",
+                                         "primitives",
+                                         "memory_bytes",
+                                         "convert_seconds",
+                                         "vertex_position_error",
+                                         "vertex_normal_error_deg",
+                                         "c0_gap",
+                                         "c1_angle_deg",
+                                         "crack_rate",
+                                         "truth_distance"};
+  EXPECT_EQ(j.size(), keys.size());
+  for (const std::string& key : keys) EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j.at("c0_gap").get<double>(), 0.25);
+  EXPECT_EQ(j.at("memory_bytes").get<size_t>(), 96u);
+  const std::string table = metricsTable({m, m});
+  // Header and two rows, all of one width; nulls print as "-".
+  std::vector<std::string> lines;
+  for (size_t start = 0, end; (end = table.find('\n', start)) != std::string::npos; start = end + 1)
+    lines.push_back(table.substr(start, end - start));
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].size(), lines[1].size());
+  EXPECT_EQ(lines[1], lines[2]);
+  EXPECT_NE(lines[1].find(" -"), std::string::npos);
+  EXPECT_EQ(lines[1].rfind("flat", 0), 0u);
+}
+
+}  // namespace
+}  // namespace quadtri
