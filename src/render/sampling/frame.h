@@ -12,9 +12,6 @@ struct Frame {
 
   /// The frame around unit normal `normal`, tangents from orthonormalBasis (Duff et al. 2017).
   explicit Frame(const Vec3& normal) : n(normal) { orthonormalBasis(n, s, t); }
-  /// The frame with given orthonormal tangents and normal (e.g. from dp/du of a patch).
-  Frame(const Vec3& tangent, const Vec3& bitangent, const Vec3& normal)
-      : s(tangent), t(bitangent), n(normal) {}
 
   /// World -> local coordinates.
   Vec3 toLocal(const Vec3& v) const { return Vec3(v.dot(s), v.dot(t), v.dot(n)); }

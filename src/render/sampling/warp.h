@@ -37,7 +37,8 @@ Vec3 squareToUniformCone(const Vec2& u, double cosThetaMax);
 /// 1 / (2π(1 − cosThetaMax)) inside the cone.
 double squareToUniformConePdf(const Vec3& v, double cosThetaMax);
 
-/// A direction towards a sphere, its distance to the sphere's near side, and its solid-angle pdf.
+/// A direction towards a sphere, the distance along it to the sphere (the near intersection from
+/// outside, the only one ahead from inside), and its solid-angle pdf.
 struct SphereDirectionSample {
   Vec3 direction;
   double distance = 0.0;
