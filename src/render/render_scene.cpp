@@ -1,6 +1,7 @@
 #include "render/render_scene.h"
 
 #include "math/error.h"
+#include "render/accel/model_geometry.h"
 #include "render/emitter/constant_emitter.h"
 #include "render/emitter/mesh_area_emitter.h"
 #include "render/emitter/point_emitter.h"
@@ -36,29 +37,23 @@ void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model, const Tess
   GeometryRecord record;
   record.bsdf = std::move(bsdf);
   record.name = name;
-  if (model->representation() == Representation::Implicit) {
+  ModelGeometry geometry = modelGeometry(*model, tessellation);
+  primitives_ += geometry.primitiveCount();
+  if (geometry.patches) {
     if (areaRadiance)
       fail("{}: an area emitter needs triangles or a sphere, not the implicit model '{}'", name,
            model->name());
-    const std::vector<QuadricPatch>& patches = model->quadricPatches();
     record.normals = GeometryRecord::Normals::Gradient;
-    record.patches = &patches;
-    for (const QuadricPatch& patch : patches) bounds_.extend(patch.bounds);
-    primitives_ += patches.size();
+    record.patches = geometry.patches;
+    for (const QuadricPatch& patch : *geometry.patches) bounds_.extend(patch.bounds);
     record.owner = model;
-    addRecord(std::move(record), accel_.addQuadricPatches(patches));
+    addRecord(std::move(record), addModelGeometry(accel_, geometry));
     return;
   }
-  if (model->representation() == Representation::InputTriangles) {
-    record.mesh = model->meshPtr();
-    record.normals = model->interpolatesShadingNormals() ? GeometryRecord::Normals::Interpolated
-                                                         : GeometryRecord::Normals::Geometric;
-  } else {
-    record.mesh = std::make_shared<TriangleMesh>(tessellate(*model, tessellation));
-    record.normals = GeometryRecord::Normals::Interpolated;
-  }
+  record.normals = geometry.shadingNormals ? GeometryRecord::Normals::Interpolated
+                                           : GeometryRecord::Normals::Geometric;
+  record.mesh = std::make_shared<TriangleMesh>(std::move(geometry.triangles));
   bounds_.extend(record.mesh->bounds());
-  primitives_ += record.mesh->triangleCount();
   if (areaRadiance) {
     emitters_.push_back(std::make_unique<MeshAreaEmitter>(record.mesh, *areaRadiance));
     record.emitter = emitters_.back().get();
