@@ -52,13 +52,18 @@ TEST(PathIntegrator, GlassSphereInFurnaceConservesEnergy) {
   expectWhiteFurnace(scene);
 }
 
-TEST(PathIntegrator, WhiteFurnaceFlatIcosphere) {
+void icosphereFurnace(const std::string& model, int level) {
   RenderScene scene;
   ShapeParams params;
-  params.level = 2;
-  addMesh(scene, makeBuiltin("icosphere", params).mesh, "flat", diffuse(1.0));
+  params.level = level;
+  addMesh(scene, makeBuiltin("icosphere", params).mesh, model, diffuse(1.0));
   expectWhiteFurnace(scene);
 }
+
+TEST(PathIntegrator, WhiteFurnaceFlatIcosphere) { icosphereFurnace("flat", 2); }
+
+// A tessellated model renders its tessellation as triangles with interpolated normals.
+TEST(PathIntegrator, WhiteFurnaceTessellatedPhongIcosphere) { icosphereFurnace("phong", 1); }
 
 // Point light of intensity I at the centre of a closed sphere of radius R and albedo ρ with
 // inward normals: the first bounce leaves ρI/(πR²) and every further bounce multiplies the
