@@ -9,7 +9,9 @@ constexpr double kDegToRad = kPi / 180.0;
 
 // Mitsuba 3 stores every fov as the horizontal one; these are its conversions.
 double horizontalFov(double fov, FovAxis axis, double aspect) {
-  const auto fromVertical = [&] { return 2.0 * std::atan(std::tan(0.5 * fov * kDegToRad) * aspect) / kDegToRad; };
+  const auto fromVertical = [&] {
+    return 2.0 * std::atan(std::tan(0.5 * fov * kDegToRad) * aspect) / kDegToRad;
+  };
   switch (axis) {
     case FovAxis::X:
       return fov;
@@ -38,11 +40,13 @@ PerspectiveCamera::PerspectiveCamera(const Params& params) : params_(params) {
   if (!(params.nearClip > 0.0 && params.farClip > params.nearClip))
     fail("near_clip {} and far_clip {}: expected 0 < near_clip < far_clip", params.nearClip,
          params.farClip);
-  if (!params.cameraToWorld.allFinite() || std::abs(params.cameraToWorld.topLeftCorner<3, 3>().determinant()) == 0.0)
+  if (!params.cameraToWorld.allFinite() ||
+      std::abs(params.cameraToWorld.topLeftCorner<3, 3>().determinant()) == 0.0)
     fail("camera to_world: expected a finite, invertible matrix");
   const double aspect = double(params.width) / double(params.height);
   fovX_ = horizontalFov(params.fovDegrees, params.fovAxis, aspect);
-  if (!(fovX_ > 0.0 && fovX_ < 180.0)) fail("fov {}: the horizontal field of view {} is not in (0, 180)", params.fovDegrees, fovX_);
+  if (!(fovX_ > 0.0 && fovX_ < 180.0))
+    fail("fov {}: the horizontal field of view {} is not in (0, 180)", params.fovDegrees, fovX_);
   tanHalfX_ = std::tan(0.5 * fovX_ * kDegToRad);
   tanHalfY_ = tanHalfX_ / aspect;
 }

@@ -17,11 +17,15 @@ double linearToSrgb(double linear) {
 
 size_t writeImage(const Image& image, const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
   const bool exr = ext == ".exr", png = ext == ".png";
-  if (!exr && !png) fail("{}: unknown image format '{}': expected .exr or .png", path.string(), ext);
-  if (image.width <= 0 || image.height <= 0 || image.pixels.size() != size_t(image.width) * size_t(image.height))
-    fail("{}: the image is empty or inconsistent ({}x{})", path.string(), image.width, image.height);
+  if (!exr && !png)
+    fail("{}: unknown image format '{}': expected .exr or .png", path.string(), ext);
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != size_t(image.width) * size_t(image.height))
+    fail("{}: the image is empty or inconsistent ({}x{})", path.string(), image.width,
+         image.height);
 
   size_t nonFinite = 0;
   std::vector<float> linear(image.pixels.size() * 3);
@@ -43,9 +47,12 @@ size_t writeImage(const Image& image, const std::filesystem::path& path) {
     if (!out) fail("{}: cannot create an image writer: {}", path.string(), OIIO::geterror());
     const OIIO::TypeDesc type = exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
     OIIO::ImageSpec spec(image.width, image.height, 3, type);
-    if (exr) spec.attribute("compression", "zip");
-    else spec.attribute("oiio:ColorSpace", "sRGB");
-    const void* data = exr ? static_cast<const void*>(linear.data()) : static_cast<const void*>(srgb.data());
+    if (exr)
+      spec.attribute("compression", "zip");
+    else
+      spec.attribute("oiio:ColorSpace", "sRGB");
+    const void* data =
+        exr ? static_cast<const void*>(linear.data()) : static_cast<const void*>(srgb.data());
     if (!out->open(tmp.string(), spec) || !out->write_image(type, data) || !out->close())
       fail("{}: writing the image failed: {}", path.string(), out->geterror());
   });

@@ -11,7 +11,9 @@
 namespace quadtri {
 namespace {
 
-double maxAbs(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
+double maxAbs(const Vec3& v) {
+  return v.cwiseAbs().maxCoeff();
+}
 
 // Coefficients A..J of the quadric xᵀ Q x = 0 for a symmetric 4×4 Q over (x, y, z, 1).
 QuadricCoeffs coeffsFromMatrix(const Mat4& q) {
@@ -30,9 +32,9 @@ uint32_t RenderScene::addRecord(GeometryRecord record, uint32_t geometryId) {
   return geometryId;
 }
 
-void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model, const Tessellation& tessellation,
-                           std::shared_ptr<const Bsdf> bsdf, const std::optional<Color>& areaRadiance,
-                           const std::string& name) {
+void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
+                           const Tessellation& tessellation, std::shared_ptr<const Bsdf> bsdf,
+                           const std::optional<Color>& areaRadiance, const std::string& name) {
   if (committed_) fail("{}: geometry added after the scene was committed", name);
   GeometryRecord record;
   record.bsdf = std::move(bsdf);
@@ -62,9 +64,9 @@ void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model, const Tess
   addRecord(std::move(record), id);
 }
 
-void RenderScene::addSphere(const Vec3& center, double radius, const Mat4& toWorld, bool flipNormals,
-                            std::shared_ptr<const Bsdf> bsdf, const std::optional<Color>& areaRadiance,
-                            const std::string& name) {
+void RenderScene::addSphere(const Vec3& center, double radius, const Mat4& toWorld,
+                            bool flipNormals, std::shared_ptr<const Bsdf> bsdf,
+                            const std::optional<Color>& areaRadiance, const std::string& name) {
   if (committed_) fail("{}: geometry added after the scene was committed", name);
   if (!(radius > 0.0) || !std::isfinite(radius) || !allFinite(center))
     fail("{}: expected a finite centre and a positive radius (got {})", name, radius);
@@ -107,8 +109,10 @@ void RenderScene::addSphere(const Vec3& center, double radius, const Mat4& toWor
     const Mat3 gram = linear.transpose() * linear;
     const double scale2 = gram.trace() / 3.0;
     if (!(gram - scale2 * Mat3::Identity()).isZero(1e-9 * scale2))
-      fail("{}: an emitting sphere's to_world must be a similarity (rotation, uniform scale, "
-           "translation)", name);
+      fail(
+          "{}: an emitting sphere's to_world must be a similarity (rotation, uniform scale, "
+          "translation)",
+          name);
     emitters_.push_back(std::make_unique<SphereAreaEmitter>(worldCenter, radius * std::sqrt(scale2),
                                                             flipNormals, *areaRadiance));
     record.emitter = emitters_.back().get();
@@ -155,9 +159,11 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
     const Vec3 g = quadricGradient(patch.q, p);
     if (g.squaredNorm() > 0.0) p -= (evalQuadric(patch.q, p) / g.squaredNorm()) * g;
     si.p = p;
-    si.geometricNormal = safeNormalized(patch.orientation * quadricGradient(patch.q, p), -ray.direction);
+    si.geometricNormal =
+        safeNormalized(patch.orientation * quadricGradient(patch.q, p), -ray.direction);
     si.shadingNormal = si.geometricNormal;
-    si.offset = floatErrorOffset(std::max({maxAbs(p), maxAbs(patch.bounds.lo), maxAbs(patch.bounds.hi)}));
+    si.offset =
+        floatErrorOffset(std::max({maxAbs(p), maxAbs(patch.bounds.lo), maxAbs(patch.bounds.hi)}));
     return si;
   }
   const TriangleMesh& mesh = *record.mesh;
@@ -168,9 +174,10 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
   si.geometricNormal = mesh.faceNormal(t);
   si.shadingNormal = si.geometricNormal;
   if (record.normals == GeometryRecord::Normals::Interpolated)
-    si.shadingNormal = safeNormalized(b0 * mesh.cornerNormal(t, 0) + hit.u * mesh.cornerNormal(t, 1) +
-                                          hit.v * mesh.cornerNormal(t, 2),
-                                      si.geometricNormal);
+    si.shadingNormal =
+        safeNormalized(b0 * mesh.cornerNormal(t, 0) + hit.u * mesh.cornerNormal(t, 1) +
+                           hit.v * mesh.cornerNormal(t, 2),
+                       si.geometricNormal);
   si.offset = floatErrorOffset(
       std::max({maxAbs(mesh.corner(t, 0)), maxAbs(mesh.corner(t, 1)), maxAbs(mesh.corner(t, 2))}));
   return si;
@@ -186,7 +193,8 @@ Ray RenderScene::spawnRay(const SurfaceInteraction& si, const Vec3& direction) c
   return ray;
 }
 
-Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetNormal) const {
+Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
+                            const Vec3& targetNormal) const {
   Ray ray = spawnRay(si, safeNormalized(target - si.p));
   const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
   const Vec3 end = target + side * floatErrorOffset(maxAbs(target)) * targetNormal;

@@ -23,9 +23,9 @@ struct GeometryRecord {
     Interpolated,  ///< barycentric interpolation of per-corner normals, renormalised, no correction
     Gradient,      ///< quadric patches: the oriented, normalised gradient
   } normals = Normals::Geometric;
-  std::shared_ptr<const TriangleMesh> mesh;           ///< triangles, in world space
+  std::shared_ptr<const TriangleMesh> mesh;            ///< triangles, in world space
   const std::vector<QuadricPatch>* patches = nullptr;  ///< patches, in world space
-  std::shared_ptr<const void> owner;                  ///< keeps `patches` alive
+  std::shared_ptr<const void> owner;                   ///< keeps `patches` alive
   std::shared_ptr<const Bsdf> bsdf;
   const Emitter* emitter = nullptr;  ///< area light on this geometry, if any
   std::string name;                  ///< for messages: the shape and model
@@ -33,11 +33,11 @@ struct GeometryRecord {
 
 /// A ray's hit with what shading needs, in world space.
 struct SurfaceInteraction {
-  Vec3 p;                 ///< the hit point, on the surface to double precision
-  Vec3 geometricNormal;   ///< unit; triangle winding or patch orientation, not flipped to the ray
-  Vec3 shadingNormal;     ///< unit
+  Vec3 p;                ///< the hit point, on the surface to double precision
+  Vec3 geometricNormal;  ///< unit; triangle winding or patch orientation, not flipped to the ray
+  Vec3 shadingNormal;    ///< unit
   double t = 0.0;
-  double offset = 0.0;    ///< distance along geometricNormal that clears the surface's float error
+  double offset = 0.0;  ///< distance along geometricNormal that clears the surface's float error
   const GeometryRecord* geometry = nullptr;
 };
 
@@ -104,6 +104,8 @@ class RenderScene {
 /// The offset that clears float error around a point of magnitude `magnitude` (the largest
 /// absolute coordinate involved): Embree stores vertices and ray origins as floats, so a hit
 /// is only known to about 2^-24·magnitude; the offset is 2^-19·magnitude (32 float ulps).
-inline double floatErrorOffset(double magnitude) { return 0x1.0p-19 * magnitude; }
+inline double floatErrorOffset(double magnitude) {
+  return 0x1.0p-19 * magnitude;
+}
 
 }  // namespace quadtri

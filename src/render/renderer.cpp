@@ -33,13 +33,14 @@ struct PixelResult {
 };
 
 // One pixel: fixed samples, or batches until the adaptive rule holds.
-PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator, const RenderOptions& options,
-                        int x, int y) {
+PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
+                        const RenderOptions& options, int x, int y) {
   const PerspectiveCamera& camera = scene.camera();
   const uint64_t index = uint64_t(y) * uint64_t(camera.width()) + uint64_t(x);
   Pcg32 rng(mix64(options.seed ^ mix64(index)), mix64(index) ^ options.seed);
   const AdaptiveSampling* adaptive = integrator.adaptive();
-  const uint64_t target = adaptive ? uint64_t(adaptive->maxSamples) : uint64_t(options.samplesPerPixel);
+  const uint64_t target =
+      adaptive ? uint64_t(adaptive->maxSamples) : uint64_t(options.samplesPerPixel);
   PixelResult r;
   Color sum = Color::Zero();
   double lumSum = 0.0, lumSquares = 0.0;
@@ -78,7 +79,8 @@ PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator, 
 // Redraws "[####    ] 42% ETA 12s" in place, at most a few times a second.
 class ProgressBar {
  public:
-  ProgressBar(bool enabled, size_t total) : enabled_(enabled), total_(total), start_(Clock::now()) {}
+  ProgressBar(bool enabled, size_t total)
+      : enabled_(enabled), total_(total), start_(Clock::now()) {}
   void update(size_t done) {
     if (!enabled_ || !mutex_.try_lock()) return;
     std::lock_guard<std::mutex> lock(mutex_, std::adopt_lock);
@@ -99,8 +101,10 @@ class ProgressBar {
     const double fraction = total_ ? double(done) / double(total_) : 1.0;
     const int filled = int(fraction * kWidth);
     const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    std::fprintf(stderr, "\r[%s%s] %3d%%  %.0fs elapsed, ETA %.0fs ", std::string(size_t(filled), '#').c_str(),
-                 std::string(size_t(kWidth - filled), ' ').c_str(), int(100.0 * fraction), elapsed, eta);
+    std::fprintf(stderr, "\r[%s%s] %3d%%  %.0fs elapsed, ETA %.0fs ",
+                 std::string(size_t(filled), '#').c_str(),
+                 std::string(size_t(kWidth - filled), ' ').c_str(), int(100.0 * fraction), elapsed,
+                 eta);
     std::fflush(stderr);
   }
   bool enabled_;
@@ -115,13 +119,16 @@ double RenderStats::meanSamplesPerPixel() const {
   return finishedPixels == 0 ? 0.0 : double(samples) / double(finishedPixels);
 }
 
-RenderResult render(const RenderScene& scene, const Integrator& integrator, const RenderOptions& options) {
+RenderResult render(const RenderScene& scene, const Integrator& integrator,
+                    const RenderOptions& options) {
   const PerspectiveCamera& camera = scene.camera();
   if (!integrator.adaptive() && options.samplesPerPixel < 1)
     fail("samples per pixel {}: expected at least 1", options.samplesPerPixel);
-  if (options.threads < 0) fail("threads {}: expected 0 (all) or a positive count", options.threads);
+  if (options.threads < 0)
+    fail("threads {}: expected 0 (all) or a positive count", options.threads);
   const int width = camera.width(), height = camera.height();
-  const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
+  const int tilesX = (width + kTileSize - 1) / kTileSize,
+            tilesY = (height + kTileSize - 1) / kTileSize;
   const size_t tileCount = size_t(tilesX) * size_t(tilesY);
 
   RenderResult result;
@@ -148,7 +155,8 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator, cons
         [&](const tbb::blocked_range<size_t>& range) {
           enableFlushToZero();
           for (size_t tile = range.begin(); tile != range.end(); ++tile) {
-            const int x0 = int(tile % size_t(tilesX)) * kTileSize, y0 = int(tile / size_t(tilesX)) * kTileSize;
+            const int x0 = int(tile % size_t(tilesX)) * kTileSize,
+                      y0 = int(tile / size_t(tilesX)) * kTileSize;
             const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
             uint64_t tileSamples = 0, tileRays = 0;
             size_t tileNonFinite = 0, tileDone = 0, tileSkipped = 0;

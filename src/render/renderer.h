@@ -42,6 +42,7 @@ struct RenderResult {
 /// (seed, pixel index), and its film positions come from the reconstruction filter, so the
 /// image is the same for any thread count and tile order. A sample whose radiance is NaN or
 /// infinite is replaced by zero and counted; the image never holds one.
-RenderResult render(const RenderScene& scene, const Integrator& integrator, const RenderOptions& options);
+RenderResult render(const RenderScene& scene, const Integrator& integrator,
+                    const RenderOptions& options);
 
 }  // namespace quadtri

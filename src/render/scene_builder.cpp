@@ -33,14 +33,16 @@ double resolveIor(const IorValue& value) {
   return lookupIor(std::get<std::string>(value));
 }
 
-std::shared_ptr<const Bsdf> makeBsdf(const BsdfDesc& d, const std::vector<std::shared_ptr<const Bsdf>>& built) {
+std::shared_ptr<const Bsdf> makeBsdf(const BsdfDesc& d,
+                                     const std::vector<std::shared_ptr<const Bsdf>>& built) {
   switch (d.type) {
     case BsdfDesc::Type::Diffuse:
       return std::make_shared<Diffuse>(d.reflectance);
     case BsdfDesc::Type::Dielectric:
       return std::make_shared<Dielectric>(resolveIor(d.intIor), resolveIor(d.extIor));
     case BsdfDesc::Type::Conductor:
-      return std::make_shared<Conductor>(d.material == "none" ? ConductorIor{d.eta, d.k} : lookupConductor(d.material));
+      return std::make_shared<Conductor>(d.material == "none" ? ConductorIor{d.eta, d.k}
+                                                              : lookupConductor(d.material));
     case BsdfDesc::Type::RoughConductor:
       return std::make_shared<RoughConductor>(
           d.alpha, d.material == "none" ? ConductorIor{d.eta, d.k} : lookupConductor(d.material));
@@ -80,7 +82,8 @@ void transformMesh(TriangleMesh& mesh, const Mat4& toWorld, bool flipNormals) {
   const Vec3 translation = toWorld.topRightCorner<3, 1>();
   const Mat3 normalMatrix = linear.inverse().transpose();
   for (Vec3& p : mesh.positions) p = linear * p + translation;
-  for (Vec3& n : mesh.normals) n = safeNormalized((flipNormals ? -1.0 : 1.0) * (normalMatrix * n), n);
+  for (Vec3& n : mesh.normals)
+    n = safeNormalized((flipNormals ? -1.0 : 1.0) * (normalMatrix * n), n);
   if ((linear.determinant() < 0.0) != flipNormals) {
     for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
     for (Tri& t : mesh.normalIndices) std::swap(t[1], t[2]);
@@ -97,9 +100,11 @@ TriangleMesh rectangleMesh() {
 
 TriangleMesh cubeMesh() {
   TriangleMesh m;
-  for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+  for (int i = 0; i < 8; ++i)
+    m.positions.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
   // Each face as a quad wound counter-clockwise seen from outside.
-  const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) {
     m.triangles.push_back({q[0], q[1], q[2]});
     m.triangles.push_back({q[0], q[2], q[3]});
@@ -109,7 +114,8 @@ TriangleMesh cubeMesh() {
 
 }  // namespace
 
-BuiltScene buildScene(const SceneDescription& description, const std::optional<std::string>& modelOverride) {
+BuiltScene buildScene(const SceneDescription& description,
+                      const std::optional<std::string>& modelOverride) {
   BuiltScene built;
   built.scene = std::make_unique<RenderScene>();
   RenderScene& scene = *built.scene;
@@ -126,11 +132,13 @@ BuiltScene buildScene(const SceneDescription& description, const std::optional<s
   at(sensor.location, toString(sensor), [&] { scene.setCamera(PerspectiveCamera(camera)); });
   built.options.samplesPerPixel = sensor.sampler.sampleCount;
   built.options.seed = uint64_t(uint32_t(sensor.sampler.seed));
-  built.options.filter.kind = sensor.film.filter.type == FilterDesc::Type::Box ? ReconstructionFilter::Kind::Box
-                                                                               : ReconstructionFilter::Kind::Gaussian;
+  built.options.filter.kind = sensor.film.filter.type == FilterDesc::Type::Box
+                                  ? ReconstructionFilter::Kind::Box
+                                  : ReconstructionFilter::Kind::Gaussian;
   built.options.filter.stddev = sensor.film.filter.stddev;
-  built.integrator = at(description.integrator.location, toString(description.integrator),
-                        [&] { return makeIntegrator(description.integrator, sensor.sampler.sampleCount); });
+  built.integrator = at(description.integrator.location, toString(description.integrator), [&] {
+    return makeIntegrator(description.integrator, sensor.sampler.sampleCount);
+  });
 
   std::vector<std::shared_ptr<const Bsdf>> bsdfs;
   for (const BsdfDesc& d : description.bsdfs)
@@ -138,8 +146,10 @@ BuiltScene buildScene(const SceneDescription& description, const std::optional<s
 
   for (const EmitterDesc& e : description.emitters)
     at(e.location, toString(e), [&] {
-      if (e.type == EmitterDesc::Type::Point) scene.addPointLight(e.position, e.intensity);
-      else scene.setEnvironment(e.radiance);
+      if (e.type == EmitterDesc::Type::Point)
+        scene.addPointLight(e.position, e.intensity);
+      else
+        scene.setEnvironment(e.radiance);
     });
 
   for (const ShapeDesc& s : description.shapes) {
@@ -153,8 +163,9 @@ BuiltScene buildScene(const SceneDescription& description, const std::optional<s
         return;
       }
       const bool isFile = s.type == ShapeDesc::Type::Obj || s.type == ShapeDesc::Type::Ply;
-      TriangleMesh mesh = isFile ? loadMesh(s.filename)
-                                 : (s.type == ShapeDesc::Type::Rectangle ? rectangleMesh() : cubeMesh());
+      TriangleMesh mesh =
+          isFile ? loadMesh(s.filename)
+                 : (s.type == ShapeDesc::Type::Rectangle ? rectangleMesh() : cubeMesh());
       if (s.faceNormals) {
         mesh.normals.clear();
         mesh.normalIndices.clear();
@@ -162,8 +173,10 @@ BuiltScene buildScene(const SceneDescription& description, const std::optional<s
       if (isFile) built.inputTriangles += mesh.triangleCount();
       transformMesh(mesh, s.toWorld, s.flipNormals);
       const std::string model = !isFile ? "flat" : modelOverride ? *modelOverride : s.model;
-      const Tessellation tessellation = s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
-      std::shared_ptr<const SurfaceModel> converted = makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
+      const Tessellation tessellation =
+          s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
+      std::shared_ptr<const SurfaceModel> converted =
+          makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
       scene.addModel(std::move(converted), tessellation, bsdf, s.areaRadiance, name);
     });
   }

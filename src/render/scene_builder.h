@@ -16,7 +16,7 @@ namespace quadtri {
 struct BuiltScene {
   std::unique_ptr<RenderScene> scene;
   std::shared_ptr<const Integrator> integrator;
-  RenderOptions options;  ///< samplesPerPixel, seed and filter from the description
+  RenderOptions options;      ///< samplesPerPixel, seed and filter from the description
   size_t inputTriangles = 0;  ///< triangles of the obj/ply meshes before any model
 };
 

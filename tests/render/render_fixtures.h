@@ -11,8 +11,8 @@
 #include "render/chi2.h"
 #include "render/integrator/integrator.h"
 #include "render/render_scene.h"
-#include "render/sampling/warp.h"
 #include "render/renderer.h"
+#include "render/sampling/warp.h"
 #include "surface/model.h"
 
 namespace quadtri::testing {
@@ -30,9 +30,12 @@ inline Mat4 lookAt(const Vec3& origin, const Vec3& target, const Vec3& up) {
   return m;
 }
 
-inline PerspectiveCamera makeCamera(const Vec3& origin, const Vec3& target, double fov, int width, int height) {
+inline PerspectiveCamera makeCamera(const Vec3& origin, const Vec3& target, double fov, int width,
+                                    int height) {
   PerspectiveCamera::Params p;
-  p.cameraToWorld = lookAt(origin, target, std::abs((target - origin).normalized().y()) > 0.9 ? Vec3(0, 0, 1) : Vec3(0, 1, 0));
+  p.cameraToWorld =
+      lookAt(origin, target,
+             std::abs((target - origin).normalized().y()) > 0.9 ? Vec3(0, 0, 1) : Vec3(0, 1, 0));
   p.fovDegrees = fov;
   p.width = width;
   p.height = height;
@@ -45,17 +48,22 @@ inline std::shared_ptr<const Bsdf> diffuse(double albedo) {
 
 /// A world-space mesh rendered by the named model.
 inline void addMesh(RenderScene& scene, TriangleMesh mesh, const std::string& model,
-                    std::shared_ptr<const Bsdf> bsdf, const std::optional<Color>& radiance = std::nullopt) {
-  scene.addModel(std::shared_ptr<const SurfaceModel>(makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)))),
+                    std::shared_ptr<const Bsdf> bsdf,
+                    const std::optional<Color>& radiance = std::nullopt) {
+  scene.addModel(std::shared_ptr<const SurfaceModel>(
+                     makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)))),
                  Tessellation{}, std::move(bsdf), radiance, model);
 }
 
 /// The axis-aligned box [lo, hi] as 12 triangles whose winding normals face inwards.
 inline TriangleMesh inwardBox(const Vec3& lo, const Vec3& hi) {
   TriangleMesh m;
-  for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+  for (int i = 0; i < 8; ++i)
+    m.positions.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(),
+                             i & 4 ? hi.z() : lo.z());
   // Outward-wound quads (a, b, c, d), reversed below.
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) {
     m.triangles.push_back({uint32_t(q[0]), uint32_t(q[2]), uint32_t(q[1])});
     m.triangles.push_back({uint32_t(q[0]), uint32_t(q[3]), uint32_t(q[2])});
@@ -68,8 +76,8 @@ struct PixelEstimate {
   double mean = 0.0, standardError = 0.0;
 };
 
-inline PixelEstimate estimatePixel(const RenderScene& scene, const Integrator& integrator, int x, int y,
-                                   int count, uint64_t seed) {
+inline PixelEstimate estimatePixel(const RenderScene& scene, const Integrator& integrator, int x,
+                                   int y, int count, uint64_t seed) {
   Pcg32 rng(seed, uint64_t(y) * 1000003u + uint64_t(x));
   double sum = 0.0, sumSq = 0.0;
   uint64_t rays = 0;
@@ -87,8 +95,8 @@ inline PixelEstimate estimatePixel(const RenderScene& scene, const Integrator& i
 
 /// Z-tests every pixel of the camera's image against `expected` (luminance), at a family-wise
 /// level `level` (Šidák); a zero-variance pixel must match to 1e-9.
-inline void expectPixelsMatch(const RenderScene& scene, const Integrator& integrator, double expected,
-                              int samples, double level = 1e-4) {
+inline void expectPixelsMatch(const RenderScene& scene, const Integrator& integrator,
+                              double expected, int samples, double level = 1e-4) {
   const int w = scene.camera().width(), h = scene.camera().height();
   const double perPixel = sidakLevel(level, w * h);
   for (int y = 0; y < h; ++y)

@@ -1,20 +1,22 @@
 // The perspective camera's Mitsuba conventions, the reconstruction filters and image output.
-#include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "math/error.h"
 #include "render/camera.h"
+#include "render/chi2.h"
 #include "render/filter.h"
 #include "render/image_io.h"
-#include "render/chi2.h"
 #include "render_fixtures.h"
 
 namespace quadtri::testing {
 namespace {
 
-double angleBetweenDeg(const Vec3& a, const Vec3& b) { return angleDegrees(a, b); }
+double angleBetweenDeg(const Vec3& a, const Vec3& b) {
+  return angleDegrees(a, b);
+}
 
 TEST(PerspectiveCamera, MitsubaLookAtOrientation) {
   // Looking from +z at the origin with +y up: the image's left edge shows world −x, its top +y.
@@ -26,7 +28,8 @@ TEST(PerspectiveCamera, MitsubaLookAtOrientation) {
   EXPECT_GT(cam.generateRay(Vec2(40, 10)).direction.x(), 0.0);
   EXPECT_GT(cam.generateRay(Vec2(20, 0)).direction.y(), 0.0);
   // fov is horizontal by default: the left edge is fov/2 off the axis.
-  EXPECT_NEAR(angleBetweenDeg(cam.generateRay(Vec2(0, 10)).direction, centre.direction), 30.0, 1e-9);
+  EXPECT_NEAR(angleBetweenDeg(cam.generateRay(Vec2(0, 10)).direction, centre.direction), 30.0,
+              1e-9);
 }
 
 TEST(PerspectiveCamera, FovAxes) {
@@ -67,11 +70,14 @@ TEST(ReconstructionFilter, GaussianOffsetsFollowTheTruncatedNormal) {
   Pcg32 rng(3);
   const Chi2Result r = chi2Test(
       20, 20, 200000,
-      [&]() -> std::optional<Vec2> { return (filter.sampleOffset(rng) / 4.0 + Vec2(0.5, 0.5)).eval(); },
+      [&]() -> std::optional<Vec2> {
+        return (filter.sampleOffset(rng) / 4.0 + Vec2(0.5, 0.5)).eval();
+      },
       [](const Vec2& p) {
         const auto g = [](double t) {
           const double x = 4.0 * (t - 0.5);  // offset in pixels
-          return std::exp(-x * x / (2 * 0.25)) / (std::sqrt(2 * kPi) * 0.5 * std::erf(2.0 / (0.5 * std::sqrt(2.0))));
+          return std::exp(-x * x / (2 * 0.25)) /
+                 (std::sqrt(2 * kPi) * 0.5 * std::erf(2.0 / (0.5 * std::sqrt(2.0))));
         };
         return 16.0 * g(p.x()) * g(p.y());
       });
@@ -83,7 +89,8 @@ TEST(ReconstructionFilter, BoxCoversThePixel) {
   filter.kind = ReconstructionFilter::Kind::Box;
   Pcg32 rng(5);
   const Chi2Result r = chi2Test(
-      10, 10, 50000, [&]() -> std::optional<Vec2> { return (filter.sampleOffset(rng) + Vec2(0.5, 0.5)).eval(); },
+      10, 10, 50000,
+      [&]() -> std::optional<Vec2> { return (filter.sampleOffset(rng) + Vec2(0.5, 0.5)).eval(); },
       [](const Vec2&) { return 1.0; });
   EXPECT_GT(r.pValue, 1e-3) << r.report;
 }
@@ -98,7 +105,8 @@ TEST(ImageIo, SrgbTransferFunction) {
 }
 
 TEST(ImageIo, WritesExrAndPngWithoutNonFiniteValues) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "quadtri_test_image_io";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "quadtri_test_image_io";
   std::filesystem::create_directories(dir);
   Image image(3, 2);
   image.at(0, 0) = Color(0.25, 0.5, 2.0);
@@ -123,7 +131,7 @@ TEST(ImageIo, WritesExrAndPngWithoutNonFiniteValues) {
   std::vector<unsigned char> png(18);
   ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, png.data()));
   in->close();
-  EXPECT_EQ(png[2], 255);  // 2.0 clamps
+  EXPECT_EQ(png[2], 255);   // 2.0 clamps
   EXPECT_EQ(png[15], 118);  // 0.18 → sRGB 0.461 → 118
   EXPECT_THROW(writeImage(image, dir / "a.jpg"), Error);
   EXPECT_FALSE(std::filesystem::exists(dir / "a.jpg"));

@@ -2,6 +2,7 @@
 // the solid angle the light subtends); light selection in proportion to power.
 #include <gtest/gtest.h>
 
+#include "math/error.h"
 #include "render/chi2.h"
 #include "render/emitter/constant_emitter.h"
 #include "render/emitter/light_sampler.h"
@@ -9,7 +10,6 @@
 #include "render/emitter/point_emitter.h"
 #include "render/emitter/sphere_area_emitter.h"
 #include "render/sampling/rng.h"
-#include "math/error.h"
 
 namespace quadtri::testing {
 namespace {
@@ -26,7 +26,8 @@ SolidAngleEstimate estimateSolidAngle(const Emitter& light, const Vec3& ref, int
   for (int i = 0; i < count; ++i) {
     const std::optional<LightSample> s = light.sampleLi(ref, rng.next2D());
     if (!s) continue;
-    EXPECT_NEAR(s->pdf, light.pdfLi(ref, s->direction, s->point, normalAt(s->point)), 1e-9 * s->pdf);
+    EXPECT_NEAR(s->pdf, light.pdfLi(ref, s->direction, s->point, normalAt(s->point)),
+                1e-9 * s->pdf);
     EXPECT_NEAR((ref + s->distance * s->direction - s->point).norm(), 0.0, 1e-9);
     sum += 1.0 / s->pdf;
     sumSq += 1.0 / (s->pdf * s->pdf);
@@ -41,13 +42,17 @@ TEST(MeshAreaEmitter, PdfIntegratesToTheRectangleSolidAngle) {
   // A 2×1 rectangle in the plane z = 0 facing +z, split unevenly into three triangles, seen
   // from (0, 0, d) on its axis: Ω = 4 arcsin(ab / √((a² + 4d²)(b² + 4d²))).
   auto mesh = std::make_shared<TriangleMesh>();
-  mesh->positions = {Vec3(-1, -0.5, 0), Vec3(1, -0.5, 0), Vec3(1, 0.5, 0), Vec3(-1, 0.5, 0), Vec3(0.6, 0.5, 0)};
+  mesh->positions = {Vec3(-1, -0.5, 0), Vec3(1, -0.5, 0), Vec3(1, 0.5, 0), Vec3(-1, 0.5, 0),
+                     Vec3(0.6, 0.5, 0)};
   mesh->triangles = {{0, 1, 4}, {1, 2, 4}, {0, 4, 3}};
   const MeshAreaEmitter light(mesh, Color::Constant(3.0));
   const double a = 2, b = 1, d = 0.8;
-  const double omega = 4.0 * std::asin(a * b / std::sqrt((a * a + 4 * d * d) * (b * b + 4 * d * d)));
-  const SolidAngleEstimate e = estimateSolidAngle(light, Vec3(0, 0, d), 100000, [](const Vec3&) { return Vec3(0, 0, 1); });
-  EXPECT_GT(twoSidedNormalPValue((e.mean - omega) / e.standardError), 1e-4) << e.mean << " vs " << omega;
+  const double omega =
+      4.0 * std::asin(a * b / std::sqrt((a * a + 4 * d * d) * (b * b + 4 * d * d)));
+  const SolidAngleEstimate e =
+      estimateSolidAngle(light, Vec3(0, 0, d), 100000, [](const Vec3&) { return Vec3(0, 0, 1); });
+  EXPECT_GT(twoSidedNormalPValue((e.mean - omega) / e.standardError), 1e-4)
+      << e.mean << " vs " << omega;
   // One-sided: from behind there is nothing to sample, and eval is zero on the back.
   Pcg32 rng;
   EXPECT_FALSE(light.sampleLi(Vec3(0, 0, -1), rng.next2D()));
@@ -90,7 +95,8 @@ TEST(ConstantEmitter, UniformSphereSampling) {
   const ConstantEmitter env(Color::Constant(2.0));
   Pcg32 rng(9);
   const Chi2Result r = sphericalChi2Test(
-      100000, [&]() -> std::optional<Vec3> { return env.sampleLi(Vec3::Zero(), rng.next2D())->direction; },
+      100000,
+      [&]() -> std::optional<Vec3> { return env.sampleLi(Vec3::Zero(), rng.next2D())->direction; },
       [&](const Vec3& w) { return env.pdfLi(Vec3::Zero(), w, Vec3::Zero(), Vec3::Zero()); });
   EXPECT_GT(r.pValue, 1e-3) << r.report;
 }

@@ -23,7 +23,8 @@ void expectWhiteFurnace(RenderScene& scene) {
   options.threads = 2;
   const RenderResult r = render(scene, path, options);
   const PixelEstimate m = imageMean(r.image);
-  EXPECT_GT(twoSidedNormalPValue((m.mean - 1.0) / m.standardError), 1e-4) << m.mean << " ± " << m.standardError;
+  EXPECT_GT(twoSidedNormalPValue((m.mean - 1.0) / m.standardError), 1e-4)
+      << m.mean << " ± " << m.standardError;
   EXPECT_EQ(r.stats.nonFiniteSamples, 0u);
 }
 
@@ -47,8 +48,8 @@ TEST(PathIntegrator, WhiteFurnaceScaledEllipsoid) {
 // environment carrying radiance 1, whatever it refracted or reflected on the way.
 TEST(PathIntegrator, GlassSphereInFurnaceConservesEnergy) {
   RenderScene scene;
-  scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false, std::make_shared<Dielectric>(1.5, 1.0), std::nullopt,
-                  "glass");
+  scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false,
+                  std::make_shared<Dielectric>(1.5, 1.0), std::nullopt, "glass");
   expectWhiteFurnace(scene);
 }
 
@@ -60,10 +61,14 @@ void icosphereFurnace(const std::string& model, int level) {
   expectWhiteFurnace(scene);
 }
 
-TEST(PathIntegrator, WhiteFurnaceFlatIcosphere) { icosphereFurnace("flat", 2); }
+TEST(PathIntegrator, WhiteFurnaceFlatIcosphere) {
+  icosphereFurnace("flat", 2);
+}
 
 // A tessellated model renders its tessellation as triangles with interpolated normals.
-TEST(PathIntegrator, WhiteFurnaceTessellatedPhongIcosphere) { icosphereFurnace("phong", 1); }
+TEST(PathIntegrator, WhiteFurnaceTessellatedPhongIcosphere) {
+  icosphereFurnace("phong", 1);
+}
 
 // Point light of intensity I at the centre of a closed sphere of radius R and albedo ρ with
 // inward normals: the first bounce leaves ρI/(πR²) and every further bounce multiplies the
@@ -75,7 +80,8 @@ double pointInSphereRadiance(double albedo, double intensity, double radius, int
 }
 
 void pointInSphereScene(RenderScene& scene, double albedo, double intensity, double radius) {
-  scene.addSphere(Vec3(0.3, -0.2, 0.1), radius, Mat4::Identity(), true, diffuse(albedo), std::nullopt, "sphere");
+  scene.addSphere(Vec3(0.3, -0.2, 0.1), radius, Mat4::Identity(), true, diffuse(albedo),
+                  std::nullopt, "sphere");
   scene.addPointLight(Vec3(0.3, -0.2, 0.1), Color::Constant(intensity));
   scene.setCamera(makeCamera(Vec3(0.3, 0.2, 0.5), Vec3(0.3, -0.2, -1), 70.0, 6, 6));
   scene.commit();
@@ -103,7 +109,8 @@ TEST(PathIntegrator, PointLightInClosedSphereUnboundedDepthWithRoulette) {
 // BSDF samples hit, so the two MIS strategies must agree on their pdfs.
 TEST(PathIntegrator, EmittingDiffuseBoxBalancesByMis) {
   RenderScene scene;
-  addMesh(scene, inwardBox(Vec3(-1, -0.7, -1.3), Vec3(1.1, 0.8, 0.9)), "flat", diffuse(0.4), Color::Constant(2.0));
+  addMesh(scene, inwardBox(Vec3(-1, -0.7, -1.3), Vec3(1.1, 0.8, 0.9)), "flat", diffuse(0.4),
+          Color::Constant(2.0));
   scene.setCamera(makeCamera(Vec3(0.1, 0, 0), Vec3(0.2, 0.1, -1), 80.0, 6, 6));
   scene.commit();
   expectPixelsMatch(scene, PathIntegrator({-1, 4, false}), 2.0 / 0.6, 300);
@@ -112,7 +119,8 @@ TEST(PathIntegrator, EmittingDiffuseBoxBalancesByMis) {
   // Direct lighting stops after one reflection: Le(1 + ρ), with any mix of sample counts.
   // (Light sampling alone is left out here: near the box's edges its estimator is unbiased but
   // heavy-tailed, so a Z-test of a few hundred samples would reject it; see SphereAreaLight.)
-  for (const DirectIntegrator::Params& p : {DirectIntegrator::Params{1, 1, false}, {2, 1, false}, {0, 2, false}}) {
+  for (const DirectIntegrator::Params& p :
+       {DirectIntegrator::Params{1, 1, false}, {2, 1, false}, {0, 2, false}}) {
     SCOPED_TRACE(DirectIntegrator(p).toString());
     expectPixelsMatch(scene, DirectIntegrator(p), 2.0 * 1.4, 200);
   }
@@ -128,7 +136,8 @@ TEST(PathIntegrator, SphereAreaLightOverFloor) {
   floor.positions = {Vec3(-50, 0, -50), Vec3(50, 0, -50), Vec3(50, 0, 50), Vec3(-50, 0, 50)};
   floor.triangles = {{0, 2, 1}, {0, 3, 2}};
   addMesh(scene, floor, "flat", diffuse(0.7));
-  scene.addSphere(Vec3(0, 2, 0), 0.5, Mat4::Identity(), false, diffuse(0.0), Color::Constant(4.0), "light");
+  scene.addSphere(Vec3(0, 2, 0), 0.5, Mat4::Identity(), false, diffuse(0.0), Color::Constant(4.0),
+                  "light");
   scene.setCamera(makeCamera(Vec3(3, 1, 0), Vec3::Zero(), 0.2, 2, 2));
   scene.commit();
   const double expected = 0.7 * 4.0 * 0.25 / 4.0;

@@ -86,7 +86,8 @@ TEST(RenderScene, ShadingNormalsFollowTheModel) {
   TriangleMesh mesh;
   mesh.positions = {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)};
   mesh.triangles = {{0, 1, 2}};
-  mesh.normals = {Vec3(-0.3, 0, 1).normalized(), Vec3(0.3, 0, 1).normalized(), Vec3(0, 0.5, 1).normalized()};
+  mesh.normals = {Vec3(-0.3, 0, 1).normalized(), Vec3(0.3, 0, 1).normalized(),
+                  Vec3(0, 0.5, 1).normalized()};
   mesh.normalIndices = {{0, 1, 2}};
   for (const char* model : {"flat", "shading"}) {
     RenderScene scene;
@@ -101,9 +102,10 @@ TEST(RenderScene, ShadingNormalsFollowTheModel) {
     EXPECT_NEAR((si->geometricNormal - Vec3(0, 0, 1)).norm(), 0.0, 1e-12);
     // Barycentrics of (0.2, -0.3): b1 − b0 = 0.2 and b2 = 0.35.
     const double b2 = 0.35, b1 = (1.0 - b2 + 0.2) / 2.0, b0 = 1.0 - b1 - b2;
-    const Vec3 expected = std::string(model) == "flat"
-                              ? Vec3(0, 0, 1)
-                              : Vec3(b0 * mesh.normals[0] + b1 * mesh.normals[1] + b2 * mesh.normals[2]).normalized();
+    const Vec3 expected =
+        std::string(model) == "flat"
+            ? Vec3(0, 0, 1)
+            : Vec3(b0 * mesh.normals[0] + b1 * mesh.normals[1] + b2 * mesh.normals[2]).normalized();
     EXPECT_NEAR((si->shadingNormal - expected).norm(), 0.0, 1e-6) << model;
   }
 }
@@ -133,7 +135,8 @@ TEST(RenderScene, EllipsoidQuadricFromAScaledSphere) {
   EXPECT_EQ(scene.primitiveCount(), 1u);
   // An emitting sphere must stay a sphere.
   RenderScene bad;
-  EXPECT_THROW(bad.addSphere(Vec3::Zero(), 1.0, m, false, diffuse(0.5), Color::Ones(), "light"), Error);
+  EXPECT_THROW(bad.addSphere(Vec3::Zero(), 1.0, m, false, diffuse(0.5), Color::Ones(), "light"),
+               Error);
 }
 
 }  // namespace

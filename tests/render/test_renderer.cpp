@@ -36,7 +36,8 @@ TEST(Renderer, ImageDoesNotDependOnThreadCount) {
   options.seed = 12;
   const RenderResult other = render(scene, path, options);
   size_t differing = 0;
-  for (size_t i = 0; i < one.image.pixels.size(); ++i) differing += (one.image.pixels[i] != other.image.pixels[i]).any();
+  for (size_t i = 0; i < one.image.pixels.size(); ++i)
+    differing += (one.image.pixels[i] != other.image.pixels[i]).any();
   EXPECT_GT(differing, one.image.pixels.size() / 2);
 }
 
@@ -75,7 +76,8 @@ TEST(Renderer, AdaptiveSamplingStopsWhereThePixelIsKnown) {
   sampling.maxSamples = 256;
   sampling.batch = 8;
   sampling.threshold = 0.05;
-  const AdaptiveIntegrator adaptive(std::make_shared<PathIntegrator>(PathIntegrator::Params{}), sampling);
+  const AdaptiveIntegrator adaptive(std::make_shared<PathIntegrator>(PathIntegrator::Params{}),
+                                    sampling);
   RenderOptions options;
   const RenderResult r = render(scene, adaptive, options);
   // Background pixels see the constant environment exactly and stop at the minimum; sphere

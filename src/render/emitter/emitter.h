@@ -11,13 +11,13 @@ namespace quadtri {
 
 /// Radiance arriving at a reference point from a sampled point of a light.
 struct LightSample {
-  Color radiance;         ///< Li at the reference point (for a point light I/d²)
-  Vec3 direction;         ///< unit, from the reference point towards the light
-  double distance = 0.0;  ///< to the light point (infinite for the environment)
-  double pdf = 0.0;       ///< solid-angle density at the reference point (1 for delta lights)
-  Vec3 point;             ///< on the light (meaningless for the environment)
+  Color radiance;              ///< Li at the reference point (for a point light I/d²)
+  Vec3 direction;              ///< unit, from the reference point towards the light
+  double distance = 0.0;       ///< to the light point (infinite for the environment)
+  double pdf = 0.0;            ///< solid-angle density at the reference point (1 for delta lights)
+  Vec3 point;                  ///< on the light (meaningless for the environment)
   Vec3 normal = Vec3::Zero();  ///< unit geometric normal at `point`; zero for point lights
-  bool delta = false;     ///< a Dirac light: no BSDF sampling strategy can hit it
+  bool delta = false;          ///< a Dirac light: no BSDF sampling strategy can hit it
 };
 
 class Emitter {

@@ -59,7 +59,9 @@ Color MeshAreaEmitter::eval(const Vec3& normal, const Vec3& w) const {
   return normal.dot(w) > 0.0 ? radiance_ : Color::Zero();
 }
 
-double MeshAreaEmitter::power(const Bounds3&) const { return kPi * luminance(radiance_) * totalArea_; }
+double MeshAreaEmitter::power(const Bounds3&) const {
+  return kPi * luminance(radiance_) * totalArea_;
+}
 
 std::string MeshAreaEmitter::toString() const {
   return fmt::format("area(radiance=[{}, {}, {}], triangles={}, area={})", radiance_[0],

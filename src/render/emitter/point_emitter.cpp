@@ -26,7 +26,9 @@ std::optional<LightSample> PointEmitter::sampleLi(const Vec3& ref, const Vec2&) 
   return s;
 }
 
-double PointEmitter::power(const Bounds3&) const { return 4.0 * kPi * luminance(intensity_); }
+double PointEmitter::power(const Bounds3&) const {
+  return 4.0 * kPi * luminance(intensity_);
+}
 
 std::string PointEmitter::toString() const {
   return fmt::format("point(position=[{}, {}, {}], intensity=[{}, {}, {}])", position_.x(),

@@ -9,7 +9,10 @@ namespace quadtri {
 
 SphereAreaEmitter::SphereAreaEmitter(const Vec3& center, double radius, bool flipNormals,
                                      const Color& radiance)
-    : center_(center), radius_(radius), orientation_(flipNormals ? -1.0 : 1.0), radiance_(radiance) {
+    : center_(center),
+      radius_(radius),
+      orientation_(flipNormals ? -1.0 : 1.0),
+      radiance_(radiance) {
   if (!radiance.allFinite() || (radiance < 0.0).any())
     fail("area emitter: expected a finite, non-negative radiance");
   if (!(radius > 0.0) || !std::isfinite(radius) || !allFinite(center))

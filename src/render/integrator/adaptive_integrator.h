@@ -12,7 +12,8 @@ namespace quadtri {
 class AdaptiveIntegrator final : public Integrator {
  public:
   AdaptiveIntegrator(std::shared_ptr<const Integrator> inner, const AdaptiveSampling& sampling);
-  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng, uint64_t& rays) const override {
+  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
+                 uint64_t& rays) const override {
     return inner_->radiance(scene, ray, rng, rays);
   }
   const AdaptiveSampling* adaptive() const override { return &sampling_; }

@@ -10,12 +10,16 @@
 namespace quadtri {
 
 DirectIntegrator::DirectIntegrator(const Params& params) : params_(params) {
-  if (params.emitterSamples < 0 || params.bsdfSamples < 0 || params.emitterSamples + params.bsdfSamples == 0)
-    fail("direct integrator: emitter_samples {} and bsdf_samples {}: expected non-negative counts, not both 0",
-         params.emitterSamples, params.bsdfSamples);
+  if (params.emitterSamples < 0 || params.bsdfSamples < 0 ||
+      params.emitterSamples + params.bsdfSamples == 0)
+    fail(
+        "direct integrator: emitter_samples {} and bsdf_samples {}: expected non-negative counts, "
+        "not both 0",
+        params.emitterSamples, params.bsdfSamples);
 }
 
-Color DirectIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng, uint64_t& rays) const {
+Color DirectIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
+                                 uint64_t& rays) const {
   const LightSampler& lights = scene.lightSampler();
   ++rays;
   const std::optional<SurfaceInteraction> si = scene.intersect(ray);
@@ -42,7 +46,8 @@ Color DirectIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32
     const Color f = bsdf.eval(wi, wo);
     if (isBlack(f)) continue;
     ++rays;
-    const Ray shadow = std::isinf(ls->distance) ? scene.spawnRay(*si, ls->direction) : scene.spawnRayTo(*si, ls->point, ls->normal);
+    const Ray shadow = std::isinf(ls->distance) ? scene.spawnRay(*si, ls->direction)
+                                                : scene.spawnRayTo(*si, ls->point, ls->normal);
     if (scene.occluded(shadow)) continue;
     const double lightPdf = choice.probability * ls->pdf;
     const double weight = ls->delta ? 1.0 : powerHeuristic(ne, lightPdf, nb, bsdf.pdf(wi, wo));
@@ -58,7 +63,8 @@ Color DirectIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32
     const std::optional<SurfaceInteraction> hit = scene.intersect(scene.spawnRay(*si, direction));
     const Emitter* emitter = hit ? hit->geometry->emitter : scene.environment();
     if (!emitter) continue;
-    const Color emitted = hit ? emitter->eval(hit->geometricNormal, -direction) : emitter->eval(Vec3::Zero(), -direction);
+    const Color emitted = hit ? emitter->eval(hit->geometricNormal, -direction)
+                              : emitter->eval(Vec3::Zero(), -direction);
     if (isBlack(emitted)) continue;
     double weight = 1.0;
     if (!bs->delta && ne > 0) {
@@ -73,8 +79,8 @@ Color DirectIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32
 }
 
 std::string DirectIntegrator::toString() const {
-  return fmt::format("direct(emitter_samples={}, bsdf_samples={}, hide_emitters={})", params_.emitterSamples,
-                     params_.bsdfSamples, params_.hideEmitters);
+  return fmt::format("direct(emitter_samples={}, bsdf_samples={}, hide_emitters={})",
+                     params_.emitterSamples, params_.bsdfSamples, params_.hideEmitters);
 }
 
 }  // namespace quadtri

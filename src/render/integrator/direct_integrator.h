@@ -17,7 +17,8 @@ class DirectIntegrator final : public Integrator {
     bool hideEmitters = false;
   };
   explicit DirectIntegrator(const Params& params);
-  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng, uint64_t& rays) const override;
+  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
+                 uint64_t& rays) const override;
   std::string toString() const override;
 
  private:

@@ -28,7 +28,8 @@ class Integrator {
   virtual ~Integrator() = default;
   /// One estimate of the radiance arriving at the camera along `ray`; `rays` counts every ray
   /// traced (camera, extension and shadow rays).
-  virtual Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng, uint64_t& rays) const = 0;
+  virtual Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
+                         uint64_t& rays) const = 0;
   /// The adaptive stopping rule, or null to take a fixed number of samples per pixel.
   virtual const AdaptiveSampling* adaptive() const { return nullptr; }
   /// The parameters in Mitsuba syntax, for logs.

@@ -4,7 +4,8 @@
 
 namespace quadtri {
 
-Color NormalsIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32&, uint64_t& rays) const {
+Color NormalsIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32&,
+                                  uint64_t& rays) const {
   ++rays;
   const std::optional<SurfaceInteraction> si = scene.intersect(ray);
   if (!si) return Color::Zero();

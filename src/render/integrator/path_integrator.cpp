@@ -11,7 +11,8 @@ namespace quadtri {
 
 PathIntegrator::PathIntegrator(const Params& params) : params_(params) {
   if (params.maxDepth < -1 || params.maxDepth == 0)
-    fail("path integrator: max_depth {}: expected -1 (no limit) or a positive depth", params.maxDepth);
+    fail("path integrator: max_depth {}: expected -1 (no limit) or a positive depth",
+         params.maxDepth);
   if (params.rrDepth < 1) fail("path integrator: rr_depth {}: expected at least 1", params.rrDepth);
 }
 
@@ -34,8 +35,8 @@ Color PathIntegrator::radiance(const RenderScene& scene, const Ray& cameraRay, P
       if (env && countEmission) {
         double weight = 1.0;
         if (!previousDelta) {
-          const double lightPdf =
-              lights.probability(env) * env->pdfLi(previousPoint, ray.direction, Vec3::Zero(), Vec3::Zero());
+          const double lightPdf = lights.probability(env) * env->pdfLi(previousPoint, ray.direction,
+                                                                       Vec3::Zero(), Vec3::Zero());
           weight = powerHeuristic(1, previousPdf, 1, lightPdf);
         }
         result += throughput * weight * env->eval(Vec3::Zero(), -ray.direction);
@@ -47,8 +48,9 @@ Color PathIntegrator::radiance(const RenderScene& scene, const Ray& cameraRay, P
       if (!isBlack(emitted)) {
         double weight = 1.0;
         if (!previousDelta) {
-          const double lightPdf = lights.probability(emitter) *
-                                  emitter->pdfLi(previousPoint, ray.direction, si->p, si->geometricNormal);
+          const double lightPdf =
+              lights.probability(emitter) *
+              emitter->pdfLi(previousPoint, ray.direction, si->p, si->geometricNormal);
           weight = powerHeuristic(1, previousPdf, 1, lightPdf);
         }
         result += throughput * weight * emitted;
@@ -68,12 +70,14 @@ Color PathIntegrator::radiance(const RenderScene& scene, const Ray& cameraRay, P
         const Vec3 wo = frame.toLocal(ls->direction);
         const Color f = bsdf.eval(wi, wo);
         if (!isBlack(f)) {
-          const Ray shadow = std::isinf(ls->distance) ? scene.spawnRay(*si, ls->direction)
-                                                      : scene.spawnRayTo(*si, ls->point, ls->normal);
+          const Ray shadow = std::isinf(ls->distance)
+                                 ? scene.spawnRay(*si, ls->direction)
+                                 : scene.spawnRayTo(*si, ls->point, ls->normal);
           ++rays;
           if (!scene.occluded(shadow)) {
             const double lightPdf = choice.probability * ls->pdf;
-            const double weight = ls->delta ? 1.0 : powerHeuristic(1, lightPdf, 1, bsdf.pdf(wi, wo));
+            const double weight =
+                ls->delta ? 1.0 : powerHeuristic(1, lightPdf, 1, bsdf.pdf(wi, wo));
             result += throughput * f * ls->radiance * (weight / lightPdf);
           }
         }

@@ -20,7 +20,8 @@ class PathIntegrator final : public Integrator {
     bool hideEmitters = false;
   };
   explicit PathIntegrator(const Params& params);
-  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng, uint64_t& rays) const override;
+  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
+                 uint64_t& rays) const override;
   std::string toString() const override;
   const Params& params() const { return params_; }
 
