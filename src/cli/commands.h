@@ -11,5 +11,6 @@ using Action = std::function<int()>;
 Action addAnalyzeCommand(CLI::App& app);
 Action addConvertCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);
+Action addRenderCommand(CLI::App& app);
 
 }  // namespace quadtri::cli

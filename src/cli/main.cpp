@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   add(&quadtri::cli::addAnalyzeCommand);
   add(&quadtri::cli::addConvertCommand);
   add(&quadtri::cli::addMeshCommand);
+  add(&quadtri::cli::addRenderCommand);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,207 @@
+#include "render/render_scene.h"
+
+#include "math/error.h"
+#include "render/accel/model_geometry.h"
+#include "render/emitter/constant_emitter.h"
+#include "render/emitter/mesh_area_emitter.h"
+#include "render/emitter/point_emitter.h"
+#include "render/emitter/sphere_area_emitter.h"
+#include "surface/quadric_patch.h"
+
+namespace quadtri {
+namespace {
+
+double maxAbs(const Vec3& v) {
+  return v.cwiseAbs().maxCoeff();
+}
+
+// Coefficients A..J of the quadric xᵀ Q x = 0 for a symmetric 4×4 Q over (x, y, z, 1).
+QuadricCoeffs coeffsFromMatrix(const Mat4& q) {
+  return {q(0, 0),     q(1, 1),     q(2, 2),     2 * q(0, 1), 2 * q(0, 2),
+          2 * q(1, 2), 2 * q(0, 3), 2 * q(1, 3), 2 * q(2, 3), q(3, 3)};
+}
+
+}  // namespace
+
+RenderScene::RenderScene() = default;
+RenderScene::~RenderScene() = default;
+
+uint32_t RenderScene::addRecord(GeometryRecord record, uint32_t geometryId) {
+  if (geometryId >= records_.size()) records_.resize(geometryId + 1);
+  records_[geometryId] = std::move(record);
+  return geometryId;
+}
+
+void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
+                           const Tessellation& tessellation, std::shared_ptr<const Bsdf> bsdf,
+                           const std::optional<Color>& areaRadiance, const std::string& name) {
+  if (committed_) fail("{}: geometry added after the scene was committed", name);
+  GeometryRecord record;
+  record.bsdf = std::move(bsdf);
+  record.name = name;
+  ModelGeometry geometry = modelGeometry(*model, tessellation);
+  primitives_ += geometry.primitiveCount();
+  if (geometry.patches) {
+    if (areaRadiance)
+      fail("{}: an area emitter needs triangles or a sphere, not the implicit model '{}'", name,
+           model->name());
+    record.normals = GeometryRecord::Normals::Gradient;
+    record.patches = geometry.patches;
+    for (const QuadricPatch& patch : *geometry.patches) bounds_.extend(patch.bounds);
+    record.owner = model;
+    addRecord(std::move(record), addModelGeometry(accel_, geometry));
+    return;
+  }
+  record.normals = geometry.shadingNormals ? GeometryRecord::Normals::Interpolated
+                                           : GeometryRecord::Normals::Geometric;
+  record.mesh = std::make_shared<TriangleMesh>(std::move(geometry.triangles));
+  bounds_.extend(record.mesh->bounds());
+  if (areaRadiance) {
+    emitters_.push_back(std::make_unique<MeshAreaEmitter>(record.mesh, *areaRadiance));
+    record.emitter = emitters_.back().get();
+  }
+  const uint32_t id = accel_.addTriangles(*record.mesh);
+  addRecord(std::move(record), id);
+}
+
+void RenderScene::addSphere(const Vec3& center, double radius, const Mat4& toWorld,
+                            bool flipNormals, std::shared_ptr<const Bsdf> bsdf,
+                            const std::optional<Color>& areaRadiance, const std::string& name) {
+  if (committed_) fail("{}: geometry added after the scene was committed", name);
+  if (!(radius > 0.0) || !std::isfinite(radius) || !allFinite(center))
+    fail("{}: expected a finite centre and a positive radius (got {})", name, radius);
+  const Mat3 linear = toWorld.topLeftCorner<3, 3>();
+  if (!toWorld.allFinite() || !(std::abs(linear.determinant()) > 0.0))
+    fail("{}: to_world is not a finite, invertible transform", name);
+  // Object space: |x − c|² − r² as a symmetric matrix over homogeneous points; world space:
+  // Q_world = M⁻ᵀ Q M⁻¹, scaled so its quadratic part has unit size (keeps the sign, so the
+  // gradient still points outwards).
+  Mat4 objectQ = Mat4::Identity();
+  objectQ.topRightCorner<3, 1>() = -center;
+  objectQ.bottomLeftCorner<1, 3>() = -center.transpose();
+  objectQ(3, 3) = center.squaredNorm() - radius * radius;
+  const Mat4 inverse = toWorld.inverse();
+  Mat4 worldQ = inverse.transpose() * objectQ * inverse;
+  worldQ = 0.5 * (worldQ + worldQ.transpose()).eval();
+  worldQ /= worldQ.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
+
+  auto patches = std::make_shared<std::vector<QuadricPatch>>(1);
+  QuadricPatch& patch = patches->front();
+  patch.q = coeffsFromMatrix(worldQ);
+  patch.orientation = flipNormals ? -1.0 : 1.0;
+  // The image of the sphere's box: half extent along world axis i is r·|row i of the linear part|.
+  const Vec3 worldCenter = (toWorld * center.homogeneous()).head<3>();
+  const Vec3 halfExtent = radius * linear.rowwise().norm();
+  patch.bounds.extend(worldCenter - halfExtent);
+  patch.bounds.extend(worldCenter + halfExtent);
+  // Roots at the silhouette may round just outside the exact box.
+  patch.bounds.inflate(1e-9 * (maxAbs(worldCenter) + halfExtent.maxCoeff()));
+  bounds_.extend(patch.bounds);
+  primitives_ += 1;
+
+  GeometryRecord record;
+  record.normals = GeometryRecord::Normals::Gradient;
+  record.patches = patches.get();
+  record.owner = patches;
+  record.bsdf = std::move(bsdf);
+  record.name = name;
+  if (areaRadiance) {
+    const Mat3 gram = linear.transpose() * linear;
+    const double scale2 = gram.trace() / 3.0;
+    if (!(gram - scale2 * Mat3::Identity()).isZero(1e-9 * scale2))
+      fail(
+          "{}: an emitting sphere's to_world must be a similarity (rotation, uniform scale, "
+          "translation)",
+          name);
+    emitters_.push_back(std::make_unique<SphereAreaEmitter>(worldCenter, radius * std::sqrt(scale2),
+                                                            flipNormals, *areaRadiance));
+    record.emitter = emitters_.back().get();
+  }
+  addRecord(std::move(record), accel_.addQuadricPatches(*patches));
+}
+
+void RenderScene::addPointLight(const Vec3& position, const Color& intensity) {
+  emitters_.push_back(std::make_unique<PointEmitter>(position, intensity));
+}
+
+void RenderScene::setEnvironment(const Color& radiance) {
+  if (environment_) fail("the scene has more than one environment emitter");
+  emitters_.push_back(std::make_unique<ConstantEmitter>(radiance));
+  environment_ = emitters_.back().get();
+}
+
+void RenderScene::commit() {
+  if (committed_) return;
+  accel_.commit();
+  std::vector<const Emitter*> lights;
+  for (const auto& e : emitters_) lights.push_back(e.get());
+  lightSampler_ = LightSampler(std::move(lights), bounds_);
+  committed_ = true;
+}
+
+const PerspectiveCamera& RenderScene::camera() const {
+  if (!camera_) fail("the scene has no sensor");
+  return *camera_;
+}
+
+std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
+  const RayHit hit = accel_.intersect(ray);
+  if (!hit.valid()) return std::nullopt;
+  const GeometryRecord& record = records_[hit.geometry];
+  SurfaceInteraction si;
+  si.t = hit.t;
+  si.geometry = &record;
+  if (record.patches) {
+    const QuadricPatch& patch = (*record.patches)[hit.primitive];
+    // Embree hands back t as a float: one Newton step along the gradient puts the point back
+    // on q = 0 to double precision.
+    Vec3 p = ray.origin + hit.t * ray.direction;
+    const Vec3 g = quadricGradient(patch.q, p);
+    if (g.squaredNorm() > 0.0) p -= (evalQuadric(patch.q, p) / g.squaredNorm()) * g;
+    si.p = p;
+    si.geometricNormal =
+        safeNormalized(patch.orientation * quadricGradient(patch.q, p), -ray.direction);
+    si.shadingNormal = si.geometricNormal;
+    si.offset =
+        floatErrorOffset(std::max({maxAbs(p), maxAbs(patch.bounds.lo), maxAbs(patch.bounds.hi)}));
+    return si;
+  }
+  const TriangleMesh& mesh = *record.mesh;
+  const size_t t = hit.primitive;
+  const double b0 = 1.0 - hit.u - hit.v;
+  // From the double-precision vertices, so the point lies in the triangle's plane exactly.
+  si.p = b0 * mesh.corner(t, 0) + hit.u * mesh.corner(t, 1) + hit.v * mesh.corner(t, 2);
+  si.geometricNormal = mesh.faceNormal(t);
+  si.shadingNormal = si.geometricNormal;
+  if (record.normals == GeometryRecord::Normals::Interpolated)
+    si.shadingNormal =
+        safeNormalized(b0 * mesh.cornerNormal(t, 0) + hit.u * mesh.cornerNormal(t, 1) +
+                           hit.v * mesh.cornerNormal(t, 2),
+                       si.geometricNormal);
+  si.offset = floatErrorOffset(
+      std::max({maxAbs(mesh.corner(t, 0)), maxAbs(mesh.corner(t, 1)), maxAbs(mesh.corner(t, 2))}));
+  return si;
+}
+
+Ray RenderScene::spawnRay(const SurfaceInteraction& si, const Vec3& direction) const {
+  Ray ray;
+  const double side = direction.dot(si.geometricNormal) >= 0.0 ? 1.0 : -1.0;
+  ray.origin = si.p + side * si.offset * si.geometricNormal;
+  ray.direction = direction;
+  ray.tnear = 0.0;
+  ray.tfar = kInfinity;
+  return ray;
+}
+
+Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
+                            const Vec3& targetNormal) const {
+  Ray ray = spawnRay(si, safeNormalized(target - si.p));
+  const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
+  const Vec3 end = target + side * floatErrorOffset(maxAbs(target)) * targetNormal;
+  const Vec3 toEnd = end - ray.origin;
+  ray.direction = safeNormalized(toEnd);
+  ray.tfar = toEnd.norm();
+  return ray;
+}
+
+}  // namespace quadtri

@@ -1,0 +1,196 @@
+#include "render/renderer.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+
+#include "math/error.h"
+#include "render/render_scene.h"
+
+namespace quadtri {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kTileSize = 16;
+
+// SplitMix64's finaliser: decorrelates nearby seeds and pixel indices.
+uint64_t mix64(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+struct PixelResult {
+  Color value = Color::Zero();
+  uint64_t samples = 0, rays = 0;
+  size_t nonFinite = 0;
+};
+
+// One pixel: fixed samples, or batches until the adaptive rule holds.
+PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
+                        const RenderOptions& options, int x, int y) {
+  const PerspectiveCamera& camera = scene.camera();
+  const uint64_t index = uint64_t(y) * uint64_t(camera.width()) + uint64_t(x);
+  Pcg32 rng(mix64(options.seed ^ mix64(index)), mix64(index) ^ options.seed);
+  const AdaptiveSampling* adaptive = integrator.adaptive();
+  const uint64_t target =
+      adaptive ? uint64_t(adaptive->maxSamples) : uint64_t(options.samplesPerPixel);
+  PixelResult r;
+  Color sum = Color::Zero();
+  double lumSum = 0.0, lumSquares = 0.0;
+  const Vec2 centre(x + 0.5, y + 0.5);
+  while (r.samples < target) {
+    uint64_t batch = target - r.samples;
+    if (adaptive)
+      batch = std::min(batch, r.samples < uint64_t(adaptive->minSamples)
+                                  ? uint64_t(adaptive->minSamples) - r.samples
+                                  : uint64_t(adaptive->batch));
+    for (uint64_t i = 0; i < batch; ++i) {
+      const Ray ray = camera.generateRay(centre + options.filter.sampleOffset(rng));
+      Color l = integrator.radiance(scene, ray, rng, r.rays);
+      if (!l.allFinite()) {
+        ++r.nonFinite;
+        l = Color::Zero();
+      }
+      sum += l;
+      const double lum = luminance(l);
+      lumSum += lum;
+      lumSquares += lum * lum;
+    }
+    r.samples += batch;
+    if (adaptive && r.samples >= uint64_t(adaptive->minSamples)) {
+      const double n = double(r.samples), mean = lumSum / n;
+      const double variance = std::max(0.0, (lumSquares - n * mean * mean) / (n - 1.0));
+      const double standardError = std::sqrt(variance / n);
+      if (standardError <= adaptive->threshold * std::abs(mean)) break;
+      if (variance == 0.0) break;  // a constant pixel (black, say) is known exactly
+    }
+  }
+  r.value = sum / double(r.samples);
+  return r;
+}
+
+// Redraws "[####    ] 42% ETA 12s" in place, at most a few times a second.
+class ProgressBar {
+ public:
+  ProgressBar(bool enabled, size_t total)
+      : enabled_(enabled), total_(total), start_(Clock::now()) {}
+  void update(size_t done) {
+    if (!enabled_ || !mutex_.try_lock()) return;
+    std::lock_guard<std::mutex> lock(mutex_, std::adopt_lock);
+    const auto now = Clock::now();
+    if (done < total_ && now - last_ < std::chrono::milliseconds(250)) return;
+    last_ = now;
+    draw(done, std::chrono::duration<double>(now - start_).count());
+  }
+  void finish(size_t done) {
+    if (!enabled_) return;
+    draw(done, std::chrono::duration<double>(Clock::now() - start_).count());
+    std::fputc('\n', stderr);
+  }
+
+ private:
+  void draw(size_t done, double elapsed) const {
+    constexpr int kWidth = 40;
+    const double fraction = total_ ? double(done) / double(total_) : 1.0;
+    const int filled = int(fraction * kWidth);
+    const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    std::fprintf(stderr, "\r[%s%s] %3d%%  %.0fs elapsed, ETA %.0fs ",
+                 std::string(size_t(filled), '#').c_str(),
+                 std::string(size_t(kWidth - filled), ' ').c_str(), int(100.0 * fraction), elapsed,
+                 eta);
+    std::fflush(stderr);
+  }
+  bool enabled_;
+  size_t total_;
+  Clock::time_point start_, last_{};
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+double RenderStats::meanSamplesPerPixel() const {
+  return finishedPixels == 0 ? 0.0 : double(samples) / double(finishedPixels);
+}
+
+RenderResult render(const RenderScene& scene, const Integrator& integrator,
+                    const RenderOptions& options) {
+  const PerspectiveCamera& camera = scene.camera();
+  if (!integrator.adaptive() && options.samplesPerPixel < 1)
+    fail("samples per pixel {}: expected at least 1", options.samplesPerPixel);
+  if (options.threads < 0)
+    fail("threads {}: expected 0 (all) or a positive count", options.threads);
+  const int width = camera.width(), height = camera.height();
+  const int tilesX = (width + kTileSize - 1) / kTileSize,
+            tilesY = (height + kTileSize - 1) / kTileSize;
+  const size_t tileCount = size_t(tilesX) * size_t(tilesY);
+
+  RenderResult result;
+  result.image = Image(width, height);
+  std::atomic<uint64_t> samples{0}, rays{0};
+  std::atomic<size_t> nonFinite{0}, finishedPixels{0}, unfinished{0};
+  std::atomic<bool> stopped{false};
+  const auto start = Clock::now();
+  const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
+                                    std::chrono::duration<double>(options.timeLimitSeconds));
+  ProgressBar progress(options.progress, size_t(width) * size_t(height));
+  const auto shouldStop = [&] {
+    if (stopped.load(std::memory_order_relaxed)) return true;
+    const bool stop = (options.cancel && options.cancel->load(std::memory_order_relaxed)) ||
+                      (options.timeLimitSeconds > 0.0 && Clock::now() >= deadline);
+    if (stop) stopped.store(true, std::memory_order_relaxed);
+    return stop;
+  };
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, tileCount, 1),
+        [&](const tbb::blocked_range<size_t>& range) {
+          enableFlushToZero();
+          for (size_t tile = range.begin(); tile != range.end(); ++tile) {
+            const int x0 = int(tile % size_t(tilesX)) * kTileSize,
+                      y0 = int(tile / size_t(tilesX)) * kTileSize;
+            const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+            uint64_t tileSamples = 0, tileRays = 0;
+            size_t tileNonFinite = 0, tileDone = 0, tileSkipped = 0;
+            for (int y = y0; y < y1; ++y)
+              for (int x = x0; x < x1; ++x) {
+                if (shouldStop()) {
+                  ++tileSkipped;
+                  continue;
+                }
+                const PixelResult p = renderPixel(scene, integrator, options, x, y);
+                result.image.at(x, y) = p.value;
+                tileSamples += p.samples;
+                tileRays += p.rays;
+                tileNonFinite += p.nonFinite;
+                ++tileDone;
+              }
+            samples += tileSamples;
+            rays += tileRays;
+            nonFinite += tileNonFinite;
+            unfinished += tileSkipped;
+            progress.update(finishedPixels += tileDone);
+          }
+        },
+        tbb::simple_partitioner());
+  });
+  progress.finish(finishedPixels.load());
+
+  result.stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.stats.samples = samples.load();
+  result.stats.rays = rays.load();
+  result.stats.nonFiniteSamples = nonFinite.load();
+  result.stats.unfinishedPixels = unfinished.load();
+  result.stats.finishedPixels = finishedPixels.load();
+  return result;
+}
+
+}  // namespace quadtri

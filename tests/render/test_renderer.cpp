@@ -1,0 +1,115 @@
+// The tiled renderer: determinism, NaN handling, adaptive sampling and stopping early.
+#include <gtest/gtest.h>
+
+#include "render/integrator/adaptive_integrator.h"
+#include "render/integrator/path_integrator.h"
+#include "render_fixtures.h"
+
+namespace quadtri::testing {
+namespace {
+
+void furnaceScene(RenderScene& scene, int width, int height) {
+  scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false, diffuse(0.8), std::nullopt, "sphere");
+  scene.addPointLight(Vec3(2, 3, 2), Color::Constant(10.0));
+  scene.setEnvironment(Color::Constant(0.5));
+  scene.setCamera(makeCamera(Vec3(0, 0, 3.5), Vec3::Zero(), 45.0, width, height));
+  scene.commit();
+}
+
+TEST(Renderer, ImageDoesNotDependOnThreadCount) {
+  RenderScene scene;
+  furnaceScene(scene, 37, 21);  // not a multiple of the tile size
+  const PathIntegrator path({});
+  RenderOptions options;
+  options.samplesPerPixel = 4;
+  options.seed = 11;
+  options.threads = 1;
+  const RenderResult one = render(scene, path, options);
+  options.threads = 2;
+  const RenderResult two = render(scene, path, options);
+  ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
+  for (size_t i = 0; i < one.image.pixels.size(); ++i)
+    ASSERT_TRUE((one.image.pixels[i] == two.image.pixels[i]).all()) << "pixel " << i;
+  EXPECT_EQ(one.stats.rays, two.stats.rays);
+  EXPECT_EQ(one.stats.samples, uint64_t(37 * 21 * 4));
+  // A different seed gives a different image (the seed reaches the pixel streams).
+  options.seed = 12;
+  const RenderResult other = render(scene, path, options);
+  size_t differing = 0;
+  for (size_t i = 0; i < one.image.pixels.size(); ++i)
+    differing += (one.image.pixels[i] != other.image.pixels[i]).any();
+  EXPECT_GT(differing, one.image.pixels.size() / 2);
+}
+
+// An integrator that returns NaN or infinity for some samples.
+class PoisonedIntegrator final : public Integrator {
+ public:
+  Color radiance(const RenderScene&, const Ray&, Pcg32& rng, uint64_t&) const override {
+    const double u = rng.nextDouble();
+    if (u < 0.1) return Color(std::nan(""), 1.0, 1.0);
+    if (u < 0.2) return Color(kInfinity, 0.0, 0.0);
+    return Color::Ones();
+  }
+  std::string toString() const override { return "poisoned"; }
+};
+
+TEST(Renderer, NonFiniteSamplesNeverReachTheFilm) {
+  RenderScene scene;
+  furnaceScene(scene, 8, 8);
+  RenderOptions options;
+  options.samplesPerPixel = 50;
+  const RenderResult r = render(scene, PoisonedIntegrator(), options);
+  for (const Color& c : r.image.pixels) {
+    ASSERT_TRUE(c.allFinite());
+    EXPECT_LE(c.maxCoeff(), 1.0);
+  }
+  // About 20% of 3200 samples were poisoned; each one is counted.
+  EXPECT_GT(r.stats.nonFiniteSamples, 400u);
+  EXPECT_LT(r.stats.nonFiniteSamples, 900u);
+}
+
+TEST(Renderer, AdaptiveSamplingStopsWhereThePixelIsKnown) {
+  RenderScene scene;
+  furnaceScene(scene, 16, 16);
+  AdaptiveSampling sampling;
+  sampling.minSamples = 8;
+  sampling.maxSamples = 256;
+  sampling.batch = 8;
+  sampling.threshold = 0.05;
+  const AdaptiveIntegrator adaptive(std::make_shared<PathIntegrator>(PathIntegrator::Params{}),
+                                    sampling);
+  RenderOptions options;
+  const RenderResult r = render(scene, adaptive, options);
+  // Background pixels see the constant environment exactly and stop at the minimum; sphere
+  // pixels are noisy and take more, so the mean lies strictly between the bounds.
+  EXPECT_GT(r.stats.meanSamplesPerPixel(), 8.0);
+  EXPECT_LT(r.stats.meanSamplesPerPixel(), 256.0);
+  EXPECT_EQ(r.stats.finishedPixels, 256u);
+  EXPECT_FLOAT_EQ(float(r.image.at(0, 0)[0]), 0.5f);
+}
+
+TEST(Renderer, CancelLeavesPixelsBlackAndCountsThem) {
+  RenderScene scene;
+  furnaceScene(scene, 16, 16);
+  std::atomic<bool> cancel{true};
+  RenderOptions options;
+  options.cancel = &cancel;
+  const RenderResult r = render(scene, PathIntegrator({}), options);
+  EXPECT_EQ(r.stats.unfinishedPixels, 256u);
+  EXPECT_EQ(r.stats.samples, 0u);
+  for (const Color& c : r.image.pixels) EXPECT_TRUE(isBlack(c));
+}
+
+TEST(Renderer, RejectsBadOptions) {
+  RenderScene scene;
+  furnaceScene(scene, 4, 4);
+  RenderOptions options;
+  options.samplesPerPixel = 0;
+  EXPECT_THROW(render(scene, PathIntegrator({}), options), Error);
+  options.samplesPerPixel = 1;
+  options.threads = -1;
+  EXPECT_THROW(render(scene, PathIntegrator({}), options), Error);
+}
+
+}  // namespace
+}  // namespace quadtri::testing
