@@ -15,7 +15,7 @@ namespace quadtri::cli {
 Action addAnalyzeCommand(CLI::App& app) {
   struct Options {
     std::string mesh, model = "all", tessellation = "8", normals = "file", heatmaps;
-    bool json = false;
+    bool json = false, csv = false;
     AnalysisOptions analysis;
   };
   auto opt = std::make_shared<Options>();
@@ -25,6 +25,7 @@ Action addAnalyzeCommand(CLI::App& app) {
       ->required();
   sub->add_option("--model", opt->model, "Model name, or 'all'")->capture_default_str();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of a table");
+  sub->add_flag("--csv", opt->csv, "Print CSV: a header of the JSON keys, one row per model");
   sub->add_option("--lines", opt->analysis.crack.lines, "Random lines for the crack rate")
       ->capture_default_str();
   sub->add_option("--seed", opt->analysis.crack.seed, "Seed of the crack-rate lines")
@@ -56,7 +57,24 @@ Action addAnalyzeCommand(CLI::App& app) {
         for (const auto& path : writeHeatmaps(*model, opt->heatmaps, input.description))
           fmt::print(stderr, "wrote {}\n", path.string());
     }
-    if (!opt->json) {
+    if (opt->csv) {
+      // The JSON keys in their order are the columns, so the CSV and JSON always agree.
+      std::string header, body;
+      for (const ModelMetrics& m : rows) {
+        const nlohmann::ordered_json row = toJson(m);
+        std::string line;
+        for (const auto& [key, value] : row.items()) {
+          if (body.empty()) header += (header.empty() ? "" : ",") + key;
+          line += line.empty() ? "" : ",";
+          if (value.is_string())
+            line += value.get<std::string>();
+          else if (!value.is_null())
+            line += value.dump();
+        }
+        body += line + "\n";
+      }
+      fmt::print("{}\n{}", header, body);
+    } else if (!opt->json) {
       fmt::print("mesh: {} ({} triangles)\n{}", opt->mesh, mesh->triangleCount(),
                  metricsTable(rows));
     } else if (opt->model == "all") {

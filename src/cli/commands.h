@@ -10,6 +10,7 @@ using Action = std::function<int()>;
 
 Action addAnalyzeCommand(CLI::App& app);
 Action addConvertCommand(CLI::App& app);
+Action addFigureCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
 

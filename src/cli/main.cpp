@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   };
   add(&quadtri::cli::addAnalyzeCommand);
   add(&quadtri::cli::addConvertCommand);
+  add(&quadtri::cli::addFigureCommand);
   add(&quadtri::cli::addMeshCommand);
   add(&quadtri::cli::addRenderCommand);
   try {

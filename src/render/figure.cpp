@@ -1,0 +1,116 @@
+#include "render/figure.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "math/error.h"
+#include "render/scene_builder.h"
+
+namespace quadtri {
+
+Canvas imageToCanvas(const Image& image) {
+  Canvas canvas(image.width, image.height, Rgb{0, 0, 0});
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const Color& c = image.at(x, y);
+      // Non-finite channels become black, as writeImage does for files.
+      auto display = [](double v) { return std::isfinite(v) ? float(linearToSrgb(v)) : 0.0f; };
+      canvas.set(x, y, Rgb{display(c[0]), display(c[1]), display(c[2])});
+    }
+  return canvas;
+}
+
+Canvas composeGrid(const std::vector<std::string>& rowLabels,
+                   const std::vector<std::string>& columnLabels, const std::vector<Image>& images,
+                   GridLayout* layoutOut) {
+  if (rowLabels.empty() || columnLabels.empty()) fail("a grid needs at least one row and column");
+  if (images.size() != rowLabels.size() * columnLabels.size())
+    fail("grid of {} x {} cells got {} images", rowLabels.size(), columnLabels.size(),
+         images.size());
+  GridLayout layout;
+  layout.rows = int(rowLabels.size());
+  layout.columns = int(columnLabels.size());
+  layout.cellWidth = images.front().width;
+  layout.cellHeight = images.front().height;
+  // Labels shrink with small cells so that neighbouring column labels do not overlap.
+  layout.labelSize = std::clamp(layout.cellWidth / 10, 9, 16);
+  for (size_t i = 0; i < images.size(); ++i)
+    if (images[i].width != layout.cellWidth || images[i].height != layout.cellHeight)
+      fail("grid cell {} ({}, {}) is {}x{}, expected {}x{} like the first", i,
+           rowLabels[i / columnLabels.size()], columnLabels[i % columnLabels.size()],
+           images[i].width, images[i].height, layout.cellWidth, layout.cellHeight);
+
+  const Rgb white{1, 1, 1}, black{0, 0, 0};
+  Canvas grid(layout.width(), layout.height(), white);
+  for (int c = 0; c < layout.columns; ++c)
+    grid.text(layout.cellX(c) + layout.cellWidth / 2, layout.headerHeight - 9,
+              columnLabels[size_t(c)], layout.labelSize, black, true);
+  for (int r = 0; r < layout.rows; ++r) {
+    grid.text(6, layout.cellY(r) + layout.cellHeight / 2 + layout.labelSize / 3,
+              rowLabels[size_t(r)], layout.labelSize, black);
+    for (int c = 0; c < layout.columns; ++c)
+      grid.paste(imageToCanvas(images[size_t(r) * size_t(layout.columns) + size_t(c)]),
+                 layout.cellX(c), layout.cellY(r));
+  }
+  if (layoutOut) *layoutOut = layout;
+  return grid;
+}
+
+std::vector<FigureCell> renderFigureCells(const FigureRequest& request) {
+  if (!request.sceneFor) fail("figure: no scene for the shapes");
+  std::vector<FigureCell> cells;
+  for (const std::string& shape : request.shapes) {
+    const std::filesystem::path file = request.sceneFor(shape);
+    for (const std::string& model : request.models) {
+      using Clock = std::chrono::steady_clock;
+      const auto start = Clock::now();
+      SceneDefines defines = request.defines;
+      defines["model"] = model;
+      defines["shape"] = shape;
+      BuiltScene built = buildScene(loadSceneDescription(file, defines), model);
+      FigureCell cell{shape, model, {}, 0, 0, 0, 0, 0};
+      cell.buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+      RenderOptions options = built.options;
+      if (request.samplesPerPixel) options.samplesPerPixel = *request.samplesPerPixel;
+      options.threads = request.threads;
+      RenderResult result = render(*built.scene, *built.integrator, options);
+      cell.image = std::move(result.image);
+      cell.renderSeconds = result.stats.seconds;
+      cell.meanSamplesPerPixel = result.stats.meanSamplesPerPixel();
+      cell.primitives = built.scene->primitiveCount();
+      cell.geometryBytes = built.scene->geometryBytes();
+      if (request.onCell) request.onCell(cell);
+      cells.push_back(std::move(cell));
+    }
+  }
+  return cells;
+}
+
+std::string figureCsv(const std::string& setup, const std::vector<FigureCell>& cells) {
+  std::string csv =
+      "setup,shape,model,width,height,spp,primitives,geometry_bytes,build_s,render_s\n";
+  for (const FigureCell& c : cells)
+    csv += fmt::format("{},{},{},{},{},{:.1f},{},{},{:.4f},{:.4f}\n", setup, c.shape, c.model,
+                       c.image.width, c.image.height, c.meanSamplesPerPixel, c.primitives,
+                       c.geometryBytes, c.buildSeconds, c.renderSeconds);
+  return csv;
+}
+
+std::vector<std::pair<double, double>> renderTimeRatios(const std::vector<FigureCell>& cells,
+                                                        const std::string& numerator,
+                                                        const std::string& denominator) {
+  std::vector<std::pair<double, double>> points;
+  for (const FigureCell& num : cells) {
+    if (num.model != numerator) continue;
+    for (const FigureCell& den : cells)
+      if (den.shape == num.shape && den.model == denominator && den.renderSeconds > 0)
+        points.emplace_back(double(num.primitives), num.renderSeconds / den.renderSeconds);
+  }
+  std::sort(points.begin(), points.end());
+  return points;
+}
+
+}  // namespace quadtri
