@@ -36,7 +36,9 @@ PatchLayout::PatchLayout(size_t patchCount) : patches(patchCount) {
   cell = std::clamp(1200 / columns, 24, 200);
 }
 
-int PatchLayout::width() const { return left + columns * cell + kBarWidth; }
+int PatchLayout::width() const {
+  return left + columns * cell + kBarWidth;
+}
 int PatchLayout::height() const {
   const int rows = int((patches + size_t(columns) - 1) / size_t(columns));
   return top + std::max(rows, 1) * cell + 8;
@@ -59,7 +61,8 @@ std::optional<std::tuple<size_t, double, double>> PatchLayout::patchAt(int x, in
   if (t >= patches) return std::nullopt;
   const double margin = 0.06 * cell, side = cell - 2 * margin;
   const double px = (x + 0.5) - (left + double(col) * cell) - margin;
-  const double py = (y + 0.5) - (top + double(row) * cell) - margin - side * (1.0 - kSqrt3Half) * 0.5;
+  const double py =
+      (y + 0.5) - (top + double(row) * cell) - margin - side * (1.0 - kSqrt3Half) * 0.5;
   const double v = 1.0 - py / (side * kSqrt3Half);
   const double u = px / side - 0.5 * v;
   if (u < 0 || v < 0 || u + v > 1) return std::nullopt;
@@ -116,14 +119,16 @@ Canvas drawHeatmap(const PatchLayout& layout, const PatchField& field, const std
         canvas.set(x, y, viridis((*value - lo) / range));
   // Colour bar with its range.
   const int bx = layout.width() - kBarWidth + 16, by0 = layout.top + 20, by1 = layout.height() - 28;
-  for (int y = by0; y < by1; ++y) canvas.fillRect(bx, y, bx + 18, y + 1, viridis(1.0 - double(y - by0) / (by1 - by0)));
+  for (int y = by0; y < by1; ++y)
+    canvas.fillRect(bx, y, bx + 18, y + 1, viridis(1.0 - double(y - by0) / (by1 - by0)));
   canvas.text(bx, by0 - 6, fmt::format("{:.3g}", hi), 13, kText);
   canvas.text(bx, by1 + 16, fmt::format("{:.3g}", lo), 13, kText);
   canvas.text(layout.left, 30, title, 18, kText);
   return canvas;
 }
 
-Canvas drawNormalMap(const PatchLayout& layout, const SurfaceModel& model, const std::string& title) {
+Canvas drawNormalMap(const PatchLayout& layout, const SurfaceModel& model,
+                     const std::string& title) {
   Canvas canvas(layout.width(), layout.height(), kBackground);
   // Thesis §5.2: each component normalised by its minimum and maximum over the model.
   Vec3 lo = Vec3::Constant(kInfinity), hi = Vec3::Constant(-kInfinity);
@@ -141,13 +146,15 @@ Canvas drawNormalMap(const PatchLayout& layout, const SurfaceModel& model, const
   const Vec3 range = (hi - lo).cwiseMax(Vec3::Constant(1e-12));
   for (const auto& [index, n] : pixels) {
     const Vec3 c = (n - lo).cwiseQuotient(range);
-    canvas.set(index % layout.width(), index / layout.width(), Rgb{float(c.x()), float(c.y()), float(c.z())});
+    canvas.set(index % layout.width(), index / layout.width(),
+               Rgb{float(c.x()), float(c.y()), float(c.z())});
   }
   canvas.text(layout.left, 30, title, 18, kText);
   return canvas;
 }
 
-std::vector<std::filesystem::path> writeHeatmaps(const SurfaceModel& model, const std::filesystem::path& dir,
+std::vector<std::filesystem::path> writeHeatmaps(const SurfaceModel& model,
+                                                 const std::filesystem::path& dir,
                                                  const std::string& meshLabel) {
   std::filesystem::create_directories(dir);
   const PatchLayout layout(model.patchCount());
@@ -158,12 +165,15 @@ std::vector<std::filesystem::path> writeHeatmaps(const SurfaceModel& model, cons
     canvas.savePng(path);
     written.push_back(path);
   };
-  save(drawNormalMap(layout, model, fmt::format("{} on {}: normal as colour", name, meshLabel)), "normals");
+  save(drawNormalMap(layout, model, fmt::format("{} on {}: normal as colour", name, meshLabel)),
+       "normals");
   if (!model.quadricPatches().empty()) {
-    save(drawHeatmap(layout, implicitResidualField(model),
-                     fmt::format("{} on {}: (f_i o f_p)(u,v) / |grad f_i| / mean edge", name, meshLabel)),
+    save(drawHeatmap(
+             layout, implicitResidualField(model),
+             fmt::format("{} on {}: (f_i o f_p)(u,v) / |grad f_i| / mean edge", name, meshLabel)),
          "residual");
-    save(drawHeatmap(layout, normalMisfitField(model), fmt::format("{} on {}: |n_p x n_i|", name, meshLabel)),
+    save(drawHeatmap(layout, normalMisfitField(model),
+                     fmt::format("{} on {}: |n_p x n_i|", name, meshLabel)),
          "normal-misfit");
   }
   return written;

@@ -43,12 +43,14 @@ PatchField normalMisfitField(const SurfaceModel& model);
 Canvas drawHeatmap(const PatchLayout& layout, const PatchField& field, const std::string& title);
 /// Thesis figs. 5.3-5.4: the model's normal as colour, each component mapped from its range
 /// over the model to [0, 1].
-Canvas drawNormalMap(const PatchLayout& layout, const SurfaceModel& model, const std::string& title);
+Canvas drawNormalMap(const PatchLayout& layout, const SurfaceModel& model,
+                     const std::string& title);
 
 /// Writes MODEL-normals.png for every model and, for models with quadric patches,
 /// MODEL-residual.png and MODEL-normal-misfit.png into `dir` (created if missing). Returns the
 /// paths written.
-std::vector<std::filesystem::path> writeHeatmaps(const SurfaceModel& model, const std::filesystem::path& dir,
+std::vector<std::filesystem::path> writeHeatmaps(const SurfaceModel& model,
+                                                 const std::filesystem::path& dir,
                                                  const std::string& meshLabel);
 
 }  // namespace quadtri

@@ -16,19 +16,26 @@ Action addMeshCommand(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("mesh", "Write a built-in shape as OBJ or PLY");
-  sub->add_option("name", opt->name, "Shape")->required()->check(CLI::IsMember(builtinShapeNames()));
+  sub->add_option("name", opt->name, "Shape")
+      ->required()
+      ->check(CLI::IsMember(builtinShapeNames()));
   sub->add_option("-o,--output", opt->output, "Output file (.obj or .ply)")->required();
-  sub->add_option("--level", opt->params.level, "Icosphere/ellipsoid subdivision level")->capture_default_str();
-  sub->add_option("--segments", opt->params.segments, "uv-sphere/torus divisions around the axis")->capture_default_str();
-  sub->add_option("--rings", opt->params.rings, "uv-sphere/torus divisions along the profile")->capture_default_str();
+  sub->add_option("--level", opt->params.level, "Icosphere/ellipsoid subdivision level")
+      ->capture_default_str();
+  sub->add_option("--segments", opt->params.segments, "uv-sphere/torus divisions around the axis")
+      ->capture_default_str();
+  sub->add_option("--rings", opt->params.rings, "uv-sphere/torus divisions along the profile")
+      ->capture_default_str();
   sub->add_option("--radii", opt->radii, "Ellipsoid semi-axes a b c")->expected(3);
   sub->add_option("--major", opt->params.major, "Torus major radius")->capture_default_str();
   sub->add_option("--minor", opt->params.minor, "Torus minor radius")->capture_default_str();
-  sub->add_option("--normals", opt->normals, "Vertex normals: analytic (true surface) or average (thesis eq. 2.8)")
+  sub->add_option("--normals", opt->normals,
+                  "Vertex normals: analytic (true surface) or average (thesis eq. 2.8)")
       ->check(CLI::IsMember({"analytic", "average"}))
       ->capture_default_str();
   return [opt]() {
-    if (opt->radii.size() == 3) opt->params.radii = Vec3(opt->radii[0], opt->radii[1], opt->radii[2]);
+    if (opt->radii.size() == 3)
+      opt->params.radii = Vec3(opt->radii[0], opt->radii[1], opt->radii[2]);
     opt->params.analyticNormals = opt->normals == "analytic";
     const BuiltinMesh b = makeBuiltin(opt->name, opt->params);
     saveMesh(b.mesh, opt->output);

@@ -37,8 +37,9 @@ Rgb Canvas::get(int x, int y) const {
 }
 
 void Canvas::fillRect(int x0, int y0, int x1, int y1, const Rgb& c) {
-  OIIO::ImageBufAlgo::fill(impl_->buf, c, OIIO::ROI(std::max(0, x0), std::min(width_, x1), std::max(0, y0),
-                                                    std::min(height_, y1), 0, 1, 0, 3));
+  OIIO::ImageBufAlgo::fill(impl_->buf, c,
+                           OIIO::ROI(std::max(0, x0), std::min(width_, x1), std::max(0, y0),
+                                     std::min(height_, y1), 0, 1, 0, 3));
 }
 
 void Canvas::text(int x, int y, const std::string& s, int size, const Rgb& c, bool centered) {
@@ -65,9 +66,11 @@ void Canvas::savePng(const std::filesystem::path& path) const {
 
 Rgb viridis(double t) {
   static constexpr float table[9][3] = {
-      {0.267004f, 0.004874f, 0.329415f}, {0.278826f, 0.175490f, 0.483397f}, {0.229739f, 0.322361f, 0.545706f},
-      {0.172719f, 0.448791f, 0.557885f}, {0.127568f, 0.566949f, 0.550556f}, {0.157851f, 0.683765f, 0.501686f},
-      {0.369214f, 0.788888f, 0.382914f}, {0.678489f, 0.863742f, 0.189503f}, {0.993248f, 0.906157f, 0.143936f}};
+      {0.267004f, 0.004874f, 0.329415f}, {0.278826f, 0.175490f, 0.483397f},
+      {0.229739f, 0.322361f, 0.545706f}, {0.172719f, 0.448791f, 0.557885f},
+      {0.127568f, 0.566949f, 0.550556f}, {0.157851f, 0.683765f, 0.501686f},
+      {0.369214f, 0.788888f, 0.382914f}, {0.678489f, 0.863742f, 0.189503f},
+      {0.993248f, 0.906157f, 0.143936f}};
   if (!std::isfinite(t)) t = 0.0;
   const double x = std::clamp(t, 0.0, 1.0) * 8.0;
   const int i = std::min(7, int(x));

@@ -2,6 +2,7 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fmt/ranges.h>
 
 #include <assimp/Importer.hpp>
 #include <cstring>
@@ -10,8 +11,6 @@
 #include <sstream>
 
 #include "io/atomic_file.h"
-#include <fmt/ranges.h>
-
 #include "math/error.h"
 
 namespace quadtri {
@@ -38,10 +37,12 @@ TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
   if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
     fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
   Assimp::Importer importer;
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
       name, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices);
-  if (!scene || !scene->mRootNode) fail("{}: cannot read mesh ({})", name, importer.GetErrorString());
+  if (!scene || !scene->mRootNode)
+    fail("{}: cannot read mesh ({})", name, importer.GetErrorString());
   TriangleMesh mesh;
   std::map<Vec3, uint32_t, VecLess> weld, normalWeld;
   bool allHaveNormals = scene->mNumMeshes > 0 && ext != ".stl";
@@ -63,7 +64,8 @@ TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
           nrm[v] = ~0u;
           continue;
         }
-        auto [nit, ninserted] = normalWeld.try_emplace(n.normalized(), uint32_t(mesh.normals.size()));
+        auto [nit, ninserted] =
+            normalWeld.try_emplace(n.normalized(), uint32_t(mesh.normals.size()));
         if (ninserted) mesh.normals.push_back(n.normalized());
         nrm[v] = nit->second;
       }
@@ -71,7 +73,8 @@ TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];
       if (face.mNumIndices != 3) continue;
-      mesh.triangles.push_back({pos[face.mIndices[0]], pos[face.mIndices[1]], pos[face.mIndices[2]]});
+      mesh.triangles.push_back(
+          {pos[face.mIndices[0]], pos[face.mIndices[1]], pos[face.mIndices[2]]});
       if (allHaveNormals) {
         Tri ni{nrm[face.mIndices[0]], nrm[face.mIndices[1]], nrm[face.mIndices[2]]};
         for (uint32_t& i : ni)
@@ -98,8 +101,10 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
     std::ostringstream out;
     out.precision(17);
     out << "# written by quadtri\n";
-    for (const Vec3& p : mesh.positions) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-    for (const Vec3& n : mesh.normals) out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+    for (const Vec3& p : mesh.positions)
+      out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    for (const Vec3& n : mesh.normals)
+      out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       out << 'f';
       for (int k = 0; k < 3; ++k) {
@@ -132,10 +137,14 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
     }
     std::ostringstream out(std::ios::binary);
     out << "ply\nformat binary_little_endian 1.0\ncomment written by quadtri\n"
-        << "element vertex " << pos.size() << "\nproperty float x\nproperty float y\nproperty float z\n";
+        << "element vertex " << pos.size()
+        << "\nproperty float x\nproperty float y\nproperty float z\n";
     if (!nrm.empty()) out << "property float nx\nproperty float ny\nproperty float nz\n";
-    out << "element face " << tris.size() << "\nproperty list uchar uint vertex_indices\nend_header\n";
-    auto put = [&](const auto& value) { out.write(reinterpret_cast<const char*>(&value), sizeof(value)); };
+    out << "element face " << tris.size()
+        << "\nproperty list uchar uint vertex_indices\nend_header\n";
+    auto put = [&](const auto& value) {
+      out.write(reinterpret_cast<const char*>(&value), sizeof(value));
+    };
     for (size_t i = 0; i < pos.size(); ++i) {
       for (int c = 0; c < 3; ++c) put(float(pos[i][c]));
       if (!nrm.empty())

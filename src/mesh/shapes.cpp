@@ -1,9 +1,9 @@
 #include "mesh/shapes.h"
 
+#include <fmt/ranges.h>
+
 #include <charconv>
 #include <map>
-
-#include <fmt/ranges.h>
 
 #include "math/error.h"
 #include "mesh/normals.h"
@@ -31,7 +31,10 @@ double ellipsoidDistance(const Vec3& radii, const Vec3& p) {
   // bracket [lo, hi] still converges to the relevant root of the monotone branch.
   for (int it = 0; it < 200; ++it) {
     const double mid = 0.5 * (lo + hi);
-    if (F(mid) > 0.0) lo = mid; else hi = mid;
+    if (F(mid) > 0.0)
+      lo = mid;
+    else
+      hi = mid;
   }
   const double s = 0.5 * (lo + hi);
   Vec3 nearest;
@@ -58,9 +61,9 @@ TriangleMesh icosahedron() {
   MeshBuilder m;
   const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
   const double s = 1.0 / std::sqrt(1.0 + phi * phi);
-  const double pts[12][3] = {{-1, phi, 0}, {1, phi, 0},   {-1, -phi, 0}, {1, -phi, 0},
-                             {0, -1, phi}, {0, 1, phi},   {0, -1, -phi}, {0, 1, -phi},
-                             {phi, 0, -1}, {phi, 0, 1},   {-phi, 0, -1}, {-phi, 0, 1}};
+  const double pts[12][3] = {{-1, phi, 0}, {1, phi, 0}, {-1, -phi, 0}, {1, -phi, 0},
+                             {0, -1, phi}, {0, 1, phi}, {0, -1, -phi}, {0, 1, -phi},
+                             {phi, 0, -1}, {phi, 0, 1}, {-phi, 0, -1}, {-phi, 0, 1}};
   for (auto& p : pts) m.add(Vec3(p[0], p[1], p[2]) * s);
   const uint32_t f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                              {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
@@ -163,8 +166,10 @@ std::vector<double> parseNumbers(std::string_view spec, std::string_view args) {
 
 double AnalyticSurface::distance(const Vec3& p) const {
   switch (kind) {
-    case Kind::Sphere: return std::abs(p.norm() - a);
-    case Kind::Ellipsoid: return ellipsoidDistance(Vec3(a, b, c), p);
+    case Kind::Sphere:
+      return std::abs(p.norm() - a);
+    case Kind::Ellipsoid:
+      return ellipsoidDistance(Vec3(a, b, c), p);
     case Kind::Torus: {
       const double rho = std::hypot(p.x(), p.y()) - a;
       return std::abs(std::hypot(rho, p.z()) - b);
@@ -175,8 +180,10 @@ double AnalyticSurface::distance(const Vec3& p) const {
 
 Vec3 AnalyticSurface::normal(const Vec3& p) const {
   switch (kind) {
-    case Kind::Sphere: return safeNormalized(p);
-    case Kind::Ellipsoid: return safeNormalized(Vec3(p.x() / (a * a), p.y() / (b * b), p.z() / (c * c)));
+    case Kind::Sphere:
+      return safeNormalized(p);
+    case Kind::Ellipsoid:
+      return safeNormalized(Vec3(p.x() / (a * a), p.y() / (b * b), p.z() / (c * c)));
     case Kind::Torus: {
       const double rxy = std::hypot(p.x(), p.y());
       const Vec3 center = rxy > 0 ? Vec3(p.x() / rxy * a, p.y() / rxy * a, 0.0) : Vec3(a, 0, 0);
@@ -188,16 +195,19 @@ Vec3 AnalyticSurface::normal(const Vec3& p) const {
 
 double AnalyticSurface::size() const {
   switch (kind) {
-    case Kind::Sphere: return a;
-    case Kind::Ellipsoid: return std::max({a, b, c});
-    case Kind::Torus: return a + b;
+    case Kind::Sphere:
+      return a;
+    case Kind::Ellipsoid:
+      return std::max({a, b, c});
+    case Kind::Torus:
+      return a + b;
   }
   return 1.0;
 }
 
 const std::vector<std::string>& builtinShapeNames() {
-  static const std::vector<std::string> names = {"triangle", "tetrahedron", "icosahedron", "icosphere",
-                                                 "uv-sphere", "ellipsoid",  "torus"};
+  static const std::vector<std::string> names = {
+      "triangle", "tetrahedron", "icosahedron", "icosphere", "uv-sphere", "ellipsoid", "torus"};
   return names;
 }
 
@@ -210,7 +220,8 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
     const double th = 50.0 * kPi / 180.0;
     for (int i = 0; i < 3; ++i) {
       const double ph = 2 * kPi * i / 3 + kPi / 2;
-      b.mesh.positions.emplace_back(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+      b.mesh.positions.emplace_back(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
+                                    std::cos(th));
     }
     b.mesh.triangles.push_back({0, 1, 2});
     b.truth = unitSphere;
@@ -220,7 +231,8 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
   }
   if (name == "tetrahedron") {
     const double s = 1.0 / std::sqrt(3.0);
-    b.mesh.positions = {Vec3(1, 1, 1) * s, Vec3(1, -1, -1) * s, Vec3(-1, 1, -1) * s, Vec3(-1, -1, 1) * s};
+    b.mesh.positions = {Vec3(1, 1, 1) * s, Vec3(1, -1, -1) * s, Vec3(-1, 1, -1) * s,
+                        Vec3(-1, -1, 1) * s};
     b.mesh.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
     b.truth = unitSphere;
     b.description = "regular tetrahedron";
@@ -232,7 +244,8 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
     b.truth = unitSphere;
     b.description = level == 0 ? "icosahedron" : fmt::format("icosphere level {}", level);
   } else if (name == "uv-sphere") {
-    if (params.segments < 3 || params.rings < 2) fail("uv-sphere needs at least 3 segments and 2 rings");
+    if (params.segments < 3 || params.rings < 2)
+      fail("uv-sphere needs at least 3 segments and 2 rings");
     b.mesh = uvSphereMesh(params.segments, params.rings);
     b.truth = unitSphere;
     b.description = fmt::format("uv-sphere {}x{}", params.segments, params.rings);
@@ -246,12 +259,15 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
     b.description = fmt::format("ellipsoid {}x{}x{} level {}", r.x(), r.y(), r.z(), params.level);
   } else if (name == "torus") {
     if (!(params.major > params.minor && params.minor > 0)) fail("torus needs major > minor > 0");
-    if (params.segments < 3 || params.rings < 3) fail("torus needs at least 3 segments and 3 rings");
+    if (params.segments < 3 || params.rings < 3)
+      fail("torus needs at least 3 segments and 3 rings");
     b.mesh = torusMesh(params.major, params.minor, params.segments, params.rings);
     b.truth = AnalyticSurface{AnalyticSurface::Kind::Torus, params.major, params.minor, 0};
-    b.description = fmt::format("torus R={} r={} {}x{}", params.major, params.minor, params.segments, params.rings);
+    b.description = fmt::format("torus R={} r={} {}x{}", params.major, params.minor,
+                                params.segments, params.rings);
   } else {
-    fail("unknown built-in shape '{}': expected one of {}", name, fmt::join(builtinShapeNames(), ", "));
+    fail("unknown built-in shape '{}': expected one of {}", name,
+         fmt::join(builtinShapeNames(), ", "));
   }
   setNormals(b, params.analyticNormals);
   return b;
@@ -262,11 +278,13 @@ std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
   const std::string_view name = spec.substr(0, colon);
   const auto& names = builtinShapeNames();
   if (std::find(names.begin(), names.end(), name) == names.end()) return std::nullopt;
-  const std::vector<double> v =
-      colon == std::string_view::npos ? std::vector<double>{} : parseNumbers(spec, spec.substr(colon + 1));
+  const std::vector<double> v = colon == std::string_view::npos
+                                    ? std::vector<double>{}
+                                    : parseNumbers(spec, spec.substr(colon + 1));
   ShapeParams p;
   auto need = [&](size_t lo, size_t hi) {
-    if (v.size() < lo || v.size() > hi) fail("built-in shape '{}': expected {} to {} numbers after ':'", spec, lo, hi);
+    if (v.size() < lo || v.size() > hi)
+      fail("built-in shape '{}': expected {} to {} numbers after ':'", spec, lo, hi);
   };
   if (name == "icosphere") {
     need(0, 1);
@@ -277,13 +295,18 @@ std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
     if (v.size() > 1) p.rings = int(v[1]);
   } else if (name == "ellipsoid") {
     need(0, 4);
-    if (v.size() >= 3) p.radii = Vec3(v[0], v[1], v[2]);
-    else if (!v.empty()) fail("built-in shape '{}': an ellipsoid takes three radii (and a level)", spec);
+    if (v.size() >= 3)
+      p.radii = Vec3(v[0], v[1], v[2]);
+    else if (!v.empty())
+      fail("built-in shape '{}': an ellipsoid takes three radii (and a level)", spec);
     if (v.size() == 4) p.level = int(v[3]);
   } else if (name == "torus") {
     need(0, 4);
-    if (v.size() >= 2) { p.major = v[0]; p.minor = v[1]; }
-    else if (!v.empty()) fail("built-in shape '{}': a torus takes R,r (and segments,rings)", spec);
+    if (v.size() >= 2) {
+      p.major = v[0];
+      p.minor = v[1];
+    } else if (!v.empty())
+      fail("built-in shape '{}': a torus takes R,r (and segments,rings)", spec);
     if (v.size() >= 3) p.segments = int(v[2]);
     if (v.size() >= 4) p.rings = int(v[3]);
   } else {

@@ -31,12 +31,12 @@ struct BuiltinMesh {
 
 /// Parameters of a built-in shape; unused fields are ignored by shapes that do not take them.
 struct ShapeParams {
-  int level = 2;             ///< icosphere subdivision level (20·4^level triangles)
-  int segments = 32;         ///< uv-sphere and torus: divisions around the main axis
-  int rings = 16;            ///< uv-sphere and torus: divisions along the profile
-  Vec3 radii{1.0, 0.7, 0.5}; ///< ellipsoid semi-axes
+  int level = 2;                     ///< icosphere subdivision level (20·4^level triangles)
+  int segments = 32;                 ///< uv-sphere and torus: divisions around the main axis
+  int rings = 16;                    ///< uv-sphere and torus: divisions along the profile
+  Vec3 radii{1.0, 0.7, 0.5};         ///< ellipsoid semi-axes
   double major = 1.0, minor = 0.35;  ///< torus radii
-  bool analyticNormals = true;  ///< normals from the true surface; otherwise thesis eq. 2.8
+  bool analyticNormals = true;       ///< normals from the true surface; otherwise thesis eq. 2.8
 };
 
 /// Names accepted by makeBuiltin, in the order the CLI lists them.

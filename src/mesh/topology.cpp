@@ -23,11 +23,13 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
 }
 
 size_t MeshTopology::boundaryEdgeCount() const {
-  return std::count_if(edges.begin(), edges.end(), [](const Edge& e) { return e.sides.size() == 1; });
+  return std::count_if(edges.begin(), edges.end(),
+                       [](const Edge& e) { return e.sides.size() == 1; });
 }
 
 size_t MeshTopology::nonManifoldEdgeCount() const {
-  return std::count_if(edges.begin(), edges.end(), [](const Edge& e) { return e.sides.size() > 2; });
+  return std::count_if(edges.begin(), edges.end(),
+                       [](const Edge& e) { return e.sides.size() > 2; });
 }
 
 }  // namespace quadtri

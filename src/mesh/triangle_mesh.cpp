@@ -9,7 +9,9 @@ Vec3 TriangleMesh::faceCross(size_t t) const {
   return (corner(t, 1) - a).cross(corner(t, 2) - a);
 }
 
-Vec3 TriangleMesh::faceNormal(size_t t) const { return safeNormalized(faceCross(t)); }
+Vec3 TriangleMesh::faceNormal(size_t t) const {
+  return safeNormalized(faceCross(t));
+}
 
 Vec3 TriangleMesh::cornerNormal(size_t t, int k) const {
   if (normalIndices.empty()) return faceNormal(t);
@@ -36,8 +38,8 @@ void TriangleMesh::validate(const std::string& what) const {
   for (size_t t = 0; t < triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
       if (triangles[t][k] >= positions.size())
-        fail("{}: triangle {} corner {} indexes vertex {}, but there are only {} vertices", what,
-             t, k, triangles[t][k], positions.size());
+        fail("{}: triangle {} corner {} indexes vertex {}, but there are only {} vertices", what, t,
+             k, triangles[t][k], positions.size());
   if (normalIndices.empty()) return;
   if (normalIndices.size() != triangles.size())
     fail("{}: {} normal index triples for {} triangles", what, normalIndices.size(),

@@ -43,8 +43,8 @@ struct QuadraticPatch {
 };
 
 /// The patch of triangle t, with control points from `controlPoints` (edgeControlPoints).
-QuadraticPatch quadraticPatch(const TriangleMesh& mesh, const std::vector<std::array<Vec3, 3>>& controlPoints,
-                              size_t t);
+QuadraticPatch quadraticPatch(const TriangleMesh& mesh,
+                              const std::vector<std::array<Vec3, 3>>& controlPoints, size_t t);
 
 /// +1 or -1: the sign that orients (p_u × p_v) of triangle t towards its shading normals.
 double patchOrientation(const TriangleMesh& mesh, size_t t);

@@ -60,7 +60,8 @@ nlohmann::json vecJson(const Vec3& v) {
 nlohmann::json quadraticPatchJson(const QuadraticPatch& p) {
   nlohmann::json j;
   for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
-  j["control_points"] = {{"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
+  j["control_points"] = {
+      {"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
   const std::array<Vec3, 6> c = p.coefficients();
   for (int k = 0; k < 6; ++k) j["coefficients"][fmt::format("c{}", k)] = vecJson(c[k]);
   return j;

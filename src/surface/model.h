@@ -65,6 +65,7 @@ class SurfaceModel {
 const std::vector<std::string>& modelNames();
 
 /// Converts `mesh` with the named model; throws Error listing the valid names otherwise.
-std::unique_ptr<SurfaceModel> makeModel(std::string_view name, std::shared_ptr<const TriangleMesh> mesh);
+std::unique_ptr<SurfaceModel> makeModel(std::string_view name,
+                                        std::shared_ptr<const TriangleMesh> mesh);
 
 }  // namespace quadtri

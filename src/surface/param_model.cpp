@@ -18,6 +18,8 @@ SurfacePoint ParamModel::evaluate(size_t t, double u, double v) const {
   return {p.position(u, v), orientedPatchNormal(mesh(), t, u, v, pu, pv)};
 }
 
-nlohmann::json ParamModel::patchJson(size_t t) const { return quadraticPatchJson(patch(t)); }
+nlohmann::json ParamModel::patchJson(size_t t) const {
+  return quadraticPatchJson(patch(t));
+}
 
 }  // namespace quadtri

@@ -12,9 +12,9 @@ namespace {
 // `steps` from corner `from` to corner `to`, or inside the patch.
 struct PointSite {
   enum class Kind { Corner, Edge, Interior } kind = Kind::Interior;
-  int corner = 0;      // Corner
-  int edge = 0;        // Edge: local edge k joins corners k and k+1
-  int step = 0;        // Edge: steps from corner k towards corner k+1
+  int corner = 0;  // Corner
+  int edge = 0;    // Edge: local edge k joins corners k and k+1
+  int step = 0;    // Edge: steps from corner k towards corner k+1
 };
 
 // The parameter points of one patch and the local triangles over them.
@@ -32,12 +32,18 @@ PatchPattern latticePattern(int n) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i + j <= n; ++i) {
       PointSite s;
-      if (i == 0 && j == 0) s = {PointSite::Kind::Corner, 0, 0, 0};
-      else if (i == n) s = {PointSite::Kind::Corner, 1, 0, 0};
-      else if (j == n) s = {PointSite::Kind::Corner, 2, 0, 0};
-      else if (j == 0) s = {PointSite::Kind::Edge, 0, 0, i};
-      else if (i + j == n) s = {PointSite::Kind::Edge, 0, 1, j};
-      else if (i == 0) s = {PointSite::Kind::Edge, 0, 2, n - j};
+      if (i == 0 && j == 0)
+        s = {PointSite::Kind::Corner, 0, 0, 0};
+      else if (i == n)
+        s = {PointSite::Kind::Corner, 1, 0, 0};
+      else if (j == n)
+        s = {PointSite::Kind::Corner, 2, 0, 0};
+      else if (j == 0)
+        s = {PointSite::Kind::Edge, 0, 0, i};
+      else if (i + j == n)
+        s = {PointSite::Kind::Edge, 0, 1, j};
+      else if (i == 0)
+        s = {PointSite::Kind::Edge, 0, 2, n - j};
       id[i][j] = uint32_t(p.uv.size());
       p.uv.emplace_back(double(i) / n, double(j) / n);
       p.sites.push_back(s);
@@ -62,12 +68,18 @@ PatchPattern thesisGridPattern(int m) {
     for (int a = 0; a <= n; ++a) {
       const double s = double(a) / n, t = double(b) / n;
       PointSite site;
-      if (b == n) site = {PointSite::Kind::Corner, 2, 0, 0};
-      else if (a == 0 && b == 0) site = {PointSite::Kind::Corner, 0, 0, 0};
-      else if (a == n && b == 0) site = {PointSite::Kind::Corner, 1, 0, 0};
-      else if (b == 0) site = {PointSite::Kind::Edge, 0, 0, a};
-      else if (a == n) site = {PointSite::Kind::Edge, 0, 1, b};
-      else if (a == 0) site = {PointSite::Kind::Edge, 0, 2, n - b};
+      if (b == n)
+        site = {PointSite::Kind::Corner, 2, 0, 0};
+      else if (a == 0 && b == 0)
+        site = {PointSite::Kind::Corner, 0, 0, 0};
+      else if (a == n && b == 0)
+        site = {PointSite::Kind::Corner, 1, 0, 0};
+      else if (b == 0)
+        site = {PointSite::Kind::Edge, 0, 0, a};
+      else if (a == n)
+        site = {PointSite::Kind::Edge, 0, 1, b};
+      else if (a == 0)
+        site = {PointSite::Kind::Edge, 0, 2, n - b};
       p.uv.emplace_back(s * (1.0 - t), t);
       p.sites.push_back(site);
     }
@@ -136,7 +148,8 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellat
       out.normals.push_back(safeNormalized(sp.normal, mesh.faceNormal(t)));
       if (slot) *slot = local[i];
     }
-    for (const Tri& tri : pattern.triangles) out.triangles.push_back({local[tri[0]], local[tri[1]], local[tri[2]]});
+    for (const Tri& tri : pattern.triangles)
+      out.triangles.push_back({local[tri[0]], local[tri[1]], local[tri[2]]});
   }
   out.normalIndices = out.triangles;
   return out;

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "analysis/heatmaps.h"
 #include "mesh/shapes.h"
@@ -14,14 +14,17 @@ namespace {
 // how far the thesis' parametric patch f_p strays from the sphere it samples.
 class SphereQuadricModel final : public SurfaceModel {
  public:
-  explicit SphereQuadricModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
+  explicit SphereQuadricModel(std::shared_ptr<const TriangleMesh> mesh)
+      : SurfaceModel(std::move(mesh)) {
     QuadricPatch p;
     p.q = {1, 1, 1, 0, 0, 0, 0, 0, 0, -1};
     patches_.assign(patchCount(), p);
   }
   std::string_view name() const override { return "sphere"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override {
-    const Vec3 p = ((1 - u - v) * mesh().corner(t, 0) + u * mesh().corner(t, 1) + v * mesh().corner(t, 2)).normalized();
+    const Vec3 p =
+        ((1 - u - v) * mesh().corner(t, 0) + u * mesh().corner(t, 1) + v * mesh().corner(t, 2))
+            .normalized();
     return {p, p};
   }
   Representation representation() const override { return Representation::Implicit; }
@@ -37,7 +40,8 @@ class FlatFaces final : public SurfaceModel {
   using SurfaceModel::SurfaceModel;
   std::string_view name() const override { return "faces"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override {
-    return {(1 - u - v) * mesh().corner(t, 0) + u * mesh().corner(t, 1) + v * mesh().corner(t, 2), mesh().faceNormal(t)};
+    return {(1 - u - v) * mesh().corner(t, 0) + u * mesh().corner(t, 1) + v * mesh().corner(t, 2),
+            mesh().faceNormal(t)};
   }
   nlohmann::json patchJson(size_t) const override { return {}; }
 };
@@ -93,9 +97,11 @@ TEST(Heatmaps, ImplicitFieldsVanishAtCornersOfTheSampledSphere) {
 
 TEST(Heatmaps, HeatmapSpansTheColourMapOverTheFieldRange) {
   const PatchLayout layout(4);
-  const Canvas canvas = drawHeatmap(layout, [](size_t, double u, double) { return u; }, "u");
+  const Canvas canvas = drawHeatmap(
+      layout, [](size_t, double u, double) { return u; }, "u");
   const Vec2 lowPx = layout.pixel(2, 0.02, 0.02), highPx = layout.pixel(2, 0.96, 0.02);
-  const Rgb low = canvas.get(int(lowPx.x()), int(lowPx.y())), high = canvas.get(int(highPx.x()), int(highPx.y()));
+  const Rgb low = canvas.get(int(lowPx.x()), int(lowPx.y())),
+            high = canvas.get(int(highPx.x()), int(highPx.y()));
   // The drawn range is [min u, max u] over pixel centres, within a pixel of [0, 1].
   const Rgb v0 = viridis(0.02), v1 = viridis(0.96);
   for (int k = 0; k < 3; ++k) {

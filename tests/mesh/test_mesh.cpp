@@ -13,12 +13,14 @@ namespace quadtri {
 namespace {
 
 TEST(Shapes, PolyhedraAreClosedAndOnTheUnitSphere) {
-  for (const char* name : {"tetrahedron", "icosahedron", "icosphere", "uv-sphere", "ellipsoid", "torus"}) {
+  for (const char* name :
+       {"tetrahedron", "icosahedron", "icosphere", "uv-sphere", "ellipsoid", "torus"}) {
     const BuiltinMesh b = makeBuiltin(name);
     MeshTopology topo(b.mesh);
     EXPECT_TRUE(topo.isClosed()) << name;
     // Euler characteristic: 2 for spheres, 0 for the torus.
-    const long chi = long(b.mesh.positions.size()) - long(topo.edges.size()) + long(b.mesh.triangleCount());
+    const long chi =
+        long(b.mesh.positions.size()) - long(topo.edges.size()) + long(b.mesh.triangleCount());
     EXPECT_EQ(chi, std::string(name) == "torus" ? 0 : 2) << name;
     ASSERT_TRUE(b.truth);
     for (const Vec3& p : b.mesh.positions) EXPECT_LT(b.truth->distance(p), 1e-12) << name;
@@ -46,19 +48,22 @@ TEST(Shapes, AverageNormalsOfRegularPolyhedraAreRadial) {
     const BuiltinMesh b = makeBuiltin(name, p);
     for (size_t t = 0; t < b.mesh.triangleCount(); ++t)
       for (int k = 0; k < 3; ++k)
-        EXPECT_NEAR((b.mesh.cornerNormal(t, k) - b.mesh.corner(t, k).normalized()).norm(), 0.0, 1e-12);
+        EXPECT_NEAR((b.mesh.cornerNormal(t, k) - b.mesh.corner(t, k).normalized()).norm(), 0.0,
+                    1e-12);
   }
 }
 
 TEST(Shapes, EllipsoidDistanceMatchesSampledMinimum) {
   const AnalyticSurface e{AnalyticSurface::Kind::Ellipsoid, 1.0, 0.7, 0.5};
-  const Vec3 queries[] = {Vec3(1.3, 0.2, -0.1), Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 2), Vec3(-0.4, 0.9, 0.3)};
+  const Vec3 queries[] = {Vec3(1.3, 0.2, -0.1), Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 2),
+                          Vec3(-0.4, 0.9, 0.3)};
   for (const Vec3& q : queries) {
     double best = kInfinity;
     for (int i = 0; i <= 400; ++i)
       for (int j = 0; j < 800; ++j) {
         const double th = kPi * i / 400, ph = 2 * kPi * j / 800;
-        const Vec3 s(std::sin(th) * std::cos(ph), 0.7 * std::sin(th) * std::sin(ph), 0.5 * std::cos(th));
+        const Vec3 s(std::sin(th) * std::cos(ph), 0.7 * std::sin(th) * std::sin(ph),
+                     0.5 * std::cos(th));
         best = std::min(best, (s - q).norm());
       }
     EXPECT_NEAR(e.distance(q), best, 2e-3) << q.transpose();
@@ -76,8 +81,9 @@ TEST(Shapes, BuiltinSpecParsing) {
 
 class MeshIo : public ::testing::Test {
  protected:
-  std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                              ("quadtri-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("quadtri-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   void SetUp() override { std::filesystem::create_directories(dir); }
   void TearDown() override { std::filesystem::remove_all(dir); }
 };

@@ -10,7 +10,9 @@ namespace quadtri {
 
 class Pcg32 {
  public:
-  Pcg32(uint64_t seed = 0x853c49e6748fea9bULL, uint64_t stream = 0xda3e39cb94b95bdbULL) { seedWith(seed, stream); }
+  Pcg32(uint64_t seed = 0x853c49e6748fea9bULL, uint64_t stream = 0xda3e39cb94b95bdbULL) {
+    seedWith(seed, stream);
+  }
 
   void seedWith(uint64_t seed, uint64_t stream) {
     state_ = 0;
