@@ -38,7 +38,6 @@ void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
   if (committed_) fail("{}: geometry added after the scene was committed", name);
   GeometryRecord record;
   record.bsdf = std::move(bsdf);
-  record.name = name;
   ModelGeometry geometry = modelGeometry(*model, tessellation);
   primitives_ += geometry.primitiveCount();
   if (geometry.patches) {
@@ -104,7 +103,6 @@ void RenderScene::addSphere(const Vec3& center, double radius, const Mat4& toWor
   record.patches = patches.get();
   record.owner = patches;
   record.bsdf = std::move(bsdf);
-  record.name = name;
   if (areaRadiance) {
     const Mat3 gram = linear.transpose() * linear;
     const double scale2 = gram.trace() / 3.0;

@@ -28,7 +28,6 @@ struct GeometryRecord {
   std::shared_ptr<const void> owner;                   ///< keeps `patches` alive
   std::shared_ptr<const Bsdf> bsdf;
   const Emitter* emitter = nullptr;  ///< area light on this geometry, if any
-  std::string name;                  ///< for messages: the shape and model
 };
 
 /// A ray's hit with what shading needs, in world space.
