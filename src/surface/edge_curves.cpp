@@ -10,10 +10,6 @@
 namespace quadtri {
 namespace {
 
-bool lexLess(const Vec3& a, const Vec3& b) {
-  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-}
-
 // Damping of the pseudo-inverse relative to the (unit) row scale: negligible where the planes
 // meet at a real angle (relative effect ~1e-14/σ²), decisive where they are parallel.
 constexpr double kDamping = 1e-7;
@@ -47,9 +43,16 @@ Vec3 sharedEdgeControlPoint(const TriangleMesh& mesh, const Edge& edge) {
 
 }  // namespace
 
+bool edgeEndsSwapped(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj) {
+  auto less = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  return less(vj, vi) || (vj == vi && less(nj, ni));
+}
+
 Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, const Vec3& njIn) {
   // Canonical order makes the result independent of which side asks.
-  const bool swap = lexLess(vjIn, viIn) || (vjIn == viIn && lexLess(njIn, niIn));
+  const bool swap = edgeEndsSwapped(viIn, niIn, vjIn, njIn);
   const Vec3& vi = swap ? vjIn : viIn;
   const Vec3& vj = swap ? viIn : vjIn;
   const Vec3& ni = swap ? njIn : niIn;

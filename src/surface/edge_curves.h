@@ -8,6 +8,11 @@
 
 namespace quadtri {
 
+/// True when the edge's ends (vi, ni) and (vj, nj) should be swapped into the canonical order
+/// (lexicographic on positions, then normals), so a formula symmetric in the two ends gives
+/// the same bits whichever side of the edge evaluates it.
+bool edgeEndsSwapped(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj);
+
 /// Control point b of the quadratic Bézier edge (1-t)² vi + 2t(1-t) b + t² vj: the intersection
 /// of the tangent plane at vi (normal ni), the tangent plane at vj (normal nj) and the thesis'
 /// edge plane (eq. 4.5: through vi, normal (vj-vi)×(m+nm-vi)). This is the closed form of the

@@ -2,14 +2,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "surface/edge_curves.h"
 #include "surface/local_patches.h"
 
 namespace quadtri {
 namespace {
-
-bool lexLess(const Vec3& a, const Vec3& b) {
-  return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-}
 
 // (1 − cos 0.1°)/2: Δc (and 1 − Δc) below this count as parallel (opposite) normals.
 const double kParallelDeltaC = 0.5 * (1.0 - std::cos(0.1 * kPi / 180.0));
@@ -18,7 +15,7 @@ const double kParallelDeltaC = 0.5 * (1.0 - std::cos(0.1 * kPi / 180.0));
 
 Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const Vec3& n1In) {
   // The formula is symmetric; a canonical order makes both sides of an edge agree bit for bit.
-  const bool swap = lexLess(x1In, x0In) || (x1In == x0In && lexLess(n1In, n0In));
+  const bool swap = edgeEndsSwapped(x0In, n0In, x1In, n1In);
   const Vec3& x0 = swap ? x1In : x0In;
   const Vec3& x1 = swap ? x0In : x1In;
   const Vec3& n0 = swap ? n1In : n0In;
