@@ -157,9 +157,11 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
     const Vec3 g = quadricGradient(patch.q, p);
     if (g.squaredNorm() > 0.0) p -= (evalQuadric(patch.q, p) / g.squaredNorm()) * g;
     si.p = p;
-    si.geometricNormal =
-        safeNormalized(patch.orientation * quadricGradient(patch.q, p), -ray.direction);
-    si.shadingNormal = si.geometricNormal;
+    const std::vector<QuadricPatch>& patches = *record.patches;
+    si.geometricNormal = primitiveNormal(patches, hit.primitive, p);
+    if (si.geometricNormal.squaredNorm() == 0.0) si.geometricNormal = -ray.direction;
+    si.shadingNormal =
+        patch.isBridge() ? primitiveShadingNormal(patches, hit.primitive, p) : si.geometricNormal;
     si.offset =
         floatErrorOffset(std::max({maxAbs(p), maxAbs(patch.bounds.lo), maxAbs(patch.bounds.hi)}));
     return si;

@@ -5,6 +5,7 @@
 #include "io/atomic_file.h"
 #include "math/error.h"
 #include "mesh/mesh_io.h"
+#include "surface/quadric_patch.h"
 
 namespace quadtri {
 
@@ -20,6 +21,22 @@ nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tes
   j["tessellation"] = tessellationName(tessellation);
   j["patches"] = nlohmann::json::array();
   for (size_t t = 0; t < model.patchCount(); ++t) j["patches"].push_back(model.patchJson(t));
+  // Edge bridges (quadric-implicit-robust): the primitives after the patches.
+  if (model.representation() == Representation::Implicit) {
+    const std::vector<QuadricPatch>& all = model.renderPatches();
+    for (size_t i = model.patchCount(); i < all.size(); ++i) {
+      const QuadricPatch& b = all[i];
+      nlohmann::json bridge;
+      bridge["joins"] = {b.joins[0], b.joins[1]};
+      bridge["plane"] = {b.q[6], b.q[7], b.q[8], b.q[9]};
+      for (int k = 0; k < b.planeCount; ++k)
+        bridge["planes"].push_back(
+            {b.planes[k][0], b.planes[k][1], b.planes[k][2], b.planes[k][3]});
+      bridge["bounds"] = {{"min", {b.bounds.lo.x(), b.bounds.lo.y(), b.bounds.lo.z()}},
+                          {"max", {b.bounds.hi.x(), b.bounds.hi.y(), b.bounds.hi.z()}}};
+      j["bridges"].push_back(bridge);
+    }
+  }
   return j;
 }
 

@@ -52,6 +52,10 @@ class SurfaceModel {
   virtual bool interpolatesShadingNormals() const { return false; }
   /// Implicit models: their quadric patches, one per triangle; empty otherwise.
   virtual const std::vector<QuadricPatch>& quadricPatches() const;
+  /// Implicit models: what the renderer and the crack-rate analysis trace, the patches first
+  /// (index t is patch t) and then any extra primitives that join them (edge bridges, see
+  /// QuadricPatch::joins). The patches alone by default.
+  virtual const std::vector<QuadricPatch>& renderPatches() const { return quadricPatches(); }
   /// Bytes of the model's own patch records (0 when it renders tessellated triangles).
   virtual size_t patchMemoryBytes() const { return 0; }
   /// The data of patch t for `quadtri convert --json` (see README, "Patch JSON").

@@ -14,8 +14,13 @@ Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p) {
               2 * q[2] * z + q[4] * x + q[5] * y + q[8]);
 }
 
-bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double tmin,
-                           double tmax, double& tHit) {
+namespace {
+
+// The roots of the patch's quadric along o + t d in (tmin, tmax), nearest first, that lie inside
+// the planes and bounds and pass `accept`.
+template <typename Accept>
+bool nearestRoot(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double tmin, double tmax,
+                 double& tHit, const Accept& accept) {
   const QuadricCoeffs& q = patch.q;
   const double a = q[0] * d.x() * d.x() + q[1] * d.y() * d.y() + q[2] * d.z() * d.z() +
                    q[3] * d.x() * d.y() + q[4] * d.x() * d.z() + q[5] * d.y() * d.z();
@@ -47,10 +52,51 @@ bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3&
     if (!patch.inside(p)) continue;
     if ((p.array() < patch.bounds.lo.array()).any() || (p.array() > patch.bounds.hi.array()).any())
       continue;
+    if (!accept(p)) continue;
     tHit = t;
     return true;
   }
   return false;
+}
+
+}  // namespace
+
+bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double tmin,
+                           double tmax, double& tHit) {
+  return nearestRoot(patch, o, d, tmin, tmax, tHit, [](const Vec3&) { return true; });
+}
+
+bool bridgeCovers(const std::vector<QuadricPatch>& primitives, const QuadricPatch& bridge,
+                  const Vec3& p) {
+  return outsideQuadric(primitives[size_t(bridge.joins[0])], p) !=
+         outsideQuadric(primitives[size_t(bridge.joins[1])], p);
+}
+
+bool intersectPrimitive(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& o,
+                        const Vec3& d, double tmin, double tmax, double& tHit) {
+  const QuadricPatch& patch = primitives[index];
+  if (!patch.isBridge()) return intersectQuadricPatch(patch, o, d, tmin, tmax, tHit);
+  return nearestRoot(patch, o, d, tmin, tmax, tHit,
+                     [&](const Vec3& p) { return bridgeCovers(primitives, patch, p); });
+}
+
+Vec3 primitiveNormal(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& p) {
+  const QuadricPatch& patch = primitives[index];
+  const Vec3 g = patch.orientation * quadricGradient(patch.q, p);
+  if (!patch.isBridge()) return safeNormalized(g, Vec3::Zero());
+  // The plane's gradient points into the first patch's side: the solid lies on that side where
+  // p is inside the first patch's quadric.
+  return safeNormalized(outsideQuadric(primitives[size_t(patch.joins[0])], p) ? g : Vec3(-g),
+                        Vec3::Zero());
+}
+
+Vec3 primitiveShadingNormal(const std::vector<QuadricPatch>& primitives, size_t index,
+                            const Vec3& p) {
+  const QuadricPatch& patch = primitives[index];
+  if (!patch.isBridge()) return primitiveNormal(primitives, index, p);
+  Vec3 sum = Vec3::Zero();
+  for (int32_t side : patch.joins) sum += primitiveNormal(primitives, size_t(side), p);
+  return safeNormalized(sum, primitiveNormal(primitives, index, p));
 }
 
 }  // namespace quadtri

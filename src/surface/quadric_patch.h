@@ -2,6 +2,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <vector>
 
 #include "math/vec.h"
 
@@ -28,6 +30,15 @@ struct QuadricPatch {
   int planeCount = 0;
   Bounds3 bounds;
   double orientation = 1.0;
+  /// For an edge bridge: the indices (in the same primitive array) of the two patches it joins;
+  /// -1 for an ordinary patch. A bridge's q is the shared edge plane (linear, gradient into the
+  /// first patch's side) and the bridge is the part of that plane, inside its clip planes and
+  /// bounds, where the two patches disagree about inside and outside: the sliver between the
+  /// conics in which their quadrics meet the plane. With it, neighbouring patches that do not
+  /// meet exactly still bound a closed solid.
+  std::array<int32_t, 2> joins{-1, -1};
+
+  bool isBridge() const { return joins[0] >= 0; }
 
   bool inside(const Vec3& p) const {
     for (int i = 0; i < planeCount; ++i)
@@ -41,5 +52,31 @@ struct QuadricPatch {
 /// and the bounds. Returns false when there is none.
 bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double tmin,
                            double tmax, double& tHit);
+
+/// True where p lies outside patch's quadric: orientation·q(p) > 0 (the oriented gradient points
+/// outward).
+inline bool outsideQuadric(const QuadricPatch& patch, const Vec3& p) {
+  return patch.orientation * evalQuadric(patch.q, p) > 0.0;
+}
+
+/// True where the bridge `bridge` of `primitives` exists at p (a point of its plane): the two
+/// patches it joins disagree about p's side.
+bool bridgeCovers(const std::vector<QuadricPatch>& primitives, const QuadricPatch& bridge,
+                  const Vec3& p);
+
+/// intersectQuadricPatch for primitive `index` of `primitives`, bridges included.
+bool intersectPrimitive(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& o,
+                        const Vec3& d, double tmin, double tmax, double& tHit);
+
+/// Unit outward normal of primitive `index` at p: the oriented gradient of a patch; for a bridge
+/// its plane's normal, pointing from the side inside the solid to the side outside. Zero where
+/// the gradient vanishes.
+Vec3 primitiveNormal(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& p);
+
+/// The normal to shade primitive `index` with at p: primitiveNormal for a patch; for a bridge
+/// (a sliver across an edge) the normalised mean of the two joined patches' normals, so the
+/// sliver shades like the surface around it.
+Vec3 primitiveShadingNormal(const std::vector<QuadricPatch>& primitives, size_t index,
+                            const Vec3& p);
 
 }  // namespace quadtri

@@ -136,6 +136,67 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     patch.planeCount = 3;
     clipToPatch(t);
   });
+  addBridges(topo);
+}
+
+void RobustImplicitModel::addBridges(const MeshTopology& topo) {
+  const TriangleMesh& m = mesh();
+  const Vec2 cornerUv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+  const int n = kBoundSamples;
+  std::vector<QuadricPatch> bridges(topo.edges.size());
+  std::vector<char> needed(topo.edges.size(), 0);
+  tbb::parallel_for(size_t(0), topo.edges.size(), [&](size_t i) {
+    const Edge& edge = topo.edges[i];
+    if (edge.sides.size() != 2) return;
+    const auto [ta, ka] = edge.sides[0];
+    const auto [tb, kb] = edge.sides[1];
+    const QuadricPatch& a = patches_[ta];
+    const QuadricPatch& b = patches_[tb];
+    const Vec3& va = m.positions[edge.a];
+    const Vec3& vb = m.positions[edge.b];
+    const double length = (vb - va).norm();
+    if (!(length > 0.0)) return;
+    // Both boundaries, sampled at the same points of the edge: evaluate starts them from the
+    // shared parametric edge, in the shared plane, along the shared direction.
+    const bool sameWay = m.triangles[ta][ka] == m.triangles[tb][kb];
+    QuadricPatch bridge;
+    double gap = 0.0;
+    for (int j = 0; j <= n; ++j) {
+      const double s = double(j) / n;
+      const Vec2 ua = cornerUv[ka] + s * (cornerUv[(ka + 1) % 3] - cornerUv[ka]);
+      const double sb = sameWay ? s : 1.0 - s;
+      const Vec2 ub = cornerUv[kb] + sb * (cornerUv[(kb + 1) % 3] - cornerUv[kb]);
+      const Vec3 pa = evaluate(ta, ua.x(), ua.y()).position;
+      const Vec3 pb = evaluate(tb, ub.x(), ub.y()).position;
+      bridge.bounds.extend(pa);
+      bridge.bounds.extend(pb);
+      gap = std::max(gap, (pa - pb).norm());
+    }
+    // Sides that meet to round-off (data from a quadric) need no bridge.
+    if (!(gap > 1e-9 * length)) return;
+    bridge.bounds.inflate(std::max(frames_[ta].boundsMargin, frames_[tb].boundsMargin));
+    const Vec4& plane = a.planes[ka];  // its gradient points into a's side
+    bridge.q.fill(0.0);
+    bridge.q[6] = plane[0];
+    bridge.q[7] = plane[1];
+    bridge.q[8] = plane[2];
+    bridge.q[9] = plane[3];
+    // Near both sheets (the two slabs) and between the edge's ends, where the lens pinches.
+    bridge.planes[0] = a.planes[3];
+    bridge.planes[1] = a.planes[4];
+    bridge.planes[2] = b.planes[3];
+    bridge.planes[3] = b.planes[4];
+    const Vec3 along = (vb - va) / length;
+    bridge.planes[4] << along, -along.dot(va);
+    bridge.planes[5] << -along, along.dot(vb);
+    bridge.planeCount = 6;
+    bridge.joins = {int32_t(ta), int32_t(tb)};
+    bridges[i] = bridge;
+    needed[i] = 1;
+  });
+  primitives_ = patches_;
+  for (size_t i = 0; i < bridges.size(); ++i)
+    if (needed[i]) primitives_.push_back(bridges[i]);
 }
 
 SurfacePoint RobustImplicitModel::evaluate(size_t t, double u, double v) const {
@@ -224,6 +285,7 @@ void RobustImplicitModel::clipToPatch(size_t t) {
   // a round-off floor, capped where the curvature bound is meaningless (near-singular points).
   const double margin = std::min(0.25 * curvature * spacing * spacing, scale) + 1e-4 * scale;
   patch.bounds.inflate(margin);
+  frames_[t].boundsMargin = margin;
   // The slab keeps the sheet through the corners: generous on the patch's own height range,
   // far tighter than the distance to any other sheet of a sane fit.
   const double slab = 0.25 * (hmax - hmin) + margin + 0.01 * scale;
@@ -241,8 +303,8 @@ nlohmann::json RobustImplicitModel::patchJson(size_t t) const {
     const Vec4& p = patch.planes[i];
     j["planes"].push_back({p[0], p[1], p[2], p[3]});
   }
-  j["bounds"] = {{"lo", {patch.bounds.lo.x(), patch.bounds.lo.y(), patch.bounds.lo.z()}},
-                 {"hi", {patch.bounds.hi.x(), patch.bounds.hi.y(), patch.bounds.hi.z()}}};
+  j["bounds"] = {{"min", {patch.bounds.lo.x(), patch.bounds.lo.y(), patch.bounds.lo.z()}},
+                 {"max", {patch.bounds.hi.x(), patch.bounds.hi.y(), patch.bounds.hi.z()}}};
   j["orientation"] = patch.orientation;
   j["corner_normal_error_deg"] = frames_[t].cornerNormalErrorDeg;
   return j;

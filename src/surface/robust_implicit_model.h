@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "mesh/topology.h"
 #include "surface/edge_curves.h"
 #include "surface/model.h"
 #include "surface/quadric_patch.h"
@@ -32,7 +33,11 @@ namespace quadtri {
 ///
 /// On generic data (not from a quadric) neighbouring quadrics meet the shared plane in
 /// slightly different conics (their corner normals differ by the O(h²) error that no quadric
-/// through three points with three prescribed tangent planes avoids): a sliver remains.
+/// through three points with three prescribed tangent planes avoids). Both conics pass through
+/// the edge's two vertices, so the sliver between them is a lens pinched at its ends; an edge
+/// bridge (QuadricPatch::joins) fills it with the part of the shared plane where the two
+/// quadrics disagree about inside and outside, and the patches with their bridges bound a
+/// closed solid. Edges where the two sides meet to round-off (data from a quadric) get none.
 class RobustImplicitModel final : public SurfaceModel {
  public:
   explicit RobustImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
@@ -40,7 +45,11 @@ class RobustImplicitModel final : public SurfaceModel {
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Representation representation() const override { return Representation::Implicit; }
   const std::vector<QuadricPatch>& quadricPatches() const override { return patches_; }
-  size_t patchMemoryBytes() const override { return patches_.size() * sizeof(QuadricPatch); }
+  /// The patches, then one bridge per interior edge whose sides do not meet exactly.
+  const std::vector<QuadricPatch>& renderPatches() const override { return primitives_; }
+  size_t patchMemoryBytes() const override { return primitives_.size() * sizeof(QuadricPatch); }
+  /// Number of edge bridges among renderPatches().
+  size_t bridgeCount() const { return primitives_.size() - patches_.size(); }
   nlohmann::json patchJson(size_t t) const override;
 
   /// Largest angle (degrees) between the quadric's normal at a corner of patch t and the
@@ -56,10 +65,13 @@ class RobustImplicitModel final : public SurfaceModel {
     std::array<Vec4, 3> edgePlane;
     Vec3 faceNormal;
     double cornerNormalErrorDeg = 0.0;
+    double boundsMargin = 0.0;  ///< how far the patch may leave the hull of its samples
   };
   void clipToPatch(size_t t);
+  void addBridges(const MeshTopology& topo);
 
   std::vector<QuadricPatch> patches_;
+  std::vector<QuadricPatch> primitives_;
   std::vector<Frame> frames_;
 };
 

@@ -10,6 +10,7 @@
 #include "mesh/shapes.h"
 #include "surface/convert_output.h"
 #include "surface/param_model.h"
+#include "surface/robust_implicit_model.h"
 
 namespace quadtri {
 namespace {
@@ -37,6 +38,25 @@ TEST_F(ConvertOutput, JsonHoldsEveryPatch) {
   EXPECT_EQ(j["tessellation"], "thesis");
   ASSERT_EQ(j["patches"].size(), 20u);
   for (size_t t = 0; t < 20; ++t) EXPECT_EQ(j["patches"][t], model.patchJson(t));
+}
+
+TEST_F(ConvertOutput, RobustJsonListsItsEdgeBridges) {
+  const RobustImplicitModel model(
+      std::make_shared<const TriangleMesh>(parseBuiltinSpec("torus:1,0.35,16,8")->mesh));
+  ASSERT_GT(model.bridgeCount(), 0u);
+  const nlohmann::json j = conversionJson(model, Tessellation{});
+  ASSERT_EQ(j["patches"].size(), model.patchCount());
+  ASSERT_EQ(j["bridges"].size(), model.bridgeCount());
+  const auto& all = model.renderPatches();
+  for (size_t i = 0; i < model.bridgeCount(); ++i) {
+    const QuadricPatch& b = all[model.patchCount() + i];
+    const nlohmann::json& jb = j["bridges"][i];
+    EXPECT_EQ(jb["joins"][0].get<int>(), b.joins[0]);
+    EXPECT_EQ(jb["joins"][1].get<int>(), b.joins[1]);
+    EXPECT_EQ(jb["plane"][3].get<double>(), b.q[9]);
+    EXPECT_EQ(jb["planes"].size(), size_t(b.planeCount));
+    EXPECT_EQ(jb["bounds"]["max"][1].get<double>(), b.bounds.hi.y());
+  }
 }
 
 TEST_F(ConvertOutput, MeshFilesHoldTheWeldedTessellation) {

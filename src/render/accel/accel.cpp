@@ -44,28 +44,28 @@ struct TraceContext {
   double tnear = 0.0;         // the ray's tnear clamped to >= 0, as Embree clamps its copy
   double patchT = kInfinity;  // the nearest patch hit so far, in double
   unsigned patchGeometry = kInvalidId, patchPrimitive = kInvalidId;
-  const QuadricPatch* patch = nullptr;
+  const std::vector<QuadricPatch>* patches = nullptr;  // those of the nearest patch hit
   std::vector<RayHit>* hits = nullptr;  // set by allHits(): record every hit, keep none
 };
 
-RayHit patchHit(const QuadricPatch& patch, const Ray& ray, double t, unsigned geometry,
-                unsigned primitive) {
+RayHit patchHit(const std::vector<QuadricPatch>& patches, const Ray& ray, double t,
+                unsigned geometry, unsigned primitive) {
   RayHit hit;
   hit.t = t;
   hit.geometry = geometry;
   hit.primitive = primitive;
   hit.geometricNormal =
-      safeNormalized(patch.orientation * quadricGradient(patch.q, ray.origin + t * ray.direction));
+      safeNormalized(primitiveNormal(patches, primitive, ray.origin + t * ray.direction));
   return hit;
 }
 
 // allHits(): both roots of the patch, recorded without shortening the ray.
-void collectPatchHits(const QuadricPatch& patch, TraceContext& ctx, unsigned geometry,
-                      unsigned primitive) {
+void collectPatchHits(const std::vector<QuadricPatch>& patches, TraceContext& ctx,
+                      unsigned geometry, unsigned primitive) {
   double tmin = ctx.tnear, t;
-  while (
-      intersectQuadricPatch(patch, ctx.ray->origin, ctx.ray->direction, tmin, ctx.ray->tfar, t)) {
-    ctx.hits->push_back(patchHit(patch, *ctx.ray, t, geometry, primitive));
+  while (intersectPrimitive(patches, primitive, ctx.ray->origin, ctx.ray->direction, tmin,
+                            ctx.ray->tfar, t)) {
+    ctx.hits->push_back(patchHit(patches, *ctx.ray, t, geometry, primitive));
     tmin = t;
   }
 }
@@ -103,9 +103,9 @@ void intersectPatch(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto* ctx = reinterpret_cast<TraceContext*>(args->context);
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const QuadricPatch& patch =
-      (*static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches)[args->primID];
-  if (ctx->hits) return collectPatchHits(patch, *ctx, args->geomID, args->primID);
+  const std::vector<QuadricPatch>& patches =
+      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
+  if (ctx->hits) return collectPatchHits(patches, *ctx, args->geomID, args->primID);
   // While a patch is the nearest hit (or nothing is: both ids are then invalid and patchT is
   // the ray's tfar) its exact t bounds the search; after a triangle took over, its float t does.
   const bool patchIsNearest =
@@ -113,12 +113,13 @@ void intersectPatch(const RTCIntersectFunctionNArguments* args) {
   const double tmax =
       patchIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
   double t;
-  if (!intersectQuadricPatch(patch, ctx->ray->origin, ctx->ray->direction, ctx->tnear, tmax, t))
+  if (!intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                          tmax, t))
     return;
   ctx->patchT = t;
   ctx->patchGeometry = args->geomID;
   ctx->patchPrimitive = args->primID;
-  ctx->patch = &patch;
+  ctx->patches = &patches;
   rayhit->ray.tfar = roundDown(t);
   rayhit->hit.geomID = args->geomID;
   rayhit->hit.primID = args->primID;
@@ -130,11 +131,11 @@ void occludedPatch(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
   auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  const QuadricPatch& patch =
-      (*static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches)[args->primID];
+  const std::vector<QuadricPatch>& patches =
+      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
   double t;
-  if (intersectQuadricPatch(patch, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                            ctx->ray->tfar, t))
+  if (intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                         ctx->ray->tfar, t))
     ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
 }
 
@@ -245,6 +246,11 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
     const Bounds3& b = patches[i].bounds;
     if (b.empty() || !allFinite(b.lo) || !allFinite(b.hi))
       fail("quadric patch {}: its bounds are empty or not finite", i);
+    for (int32_t side : patches[i].joins)
+      if (patches[i].isBridge() &&
+          (side < 0 || size_t(side) >= patches.size() || patches[size_t(side)].isBridge()))
+        fail("quadric patch {}: a bridge must join two patches of the same geometry, not {}", i,
+             side);
     extent = std::max({extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
   }
   auto user = std::make_unique<PatchGeometry>();
@@ -286,7 +292,7 @@ RayHit Accel::intersect(const Ray& ray) const {
   RayHit hit;
   if (rayhit.hit.geomID == kInvalidId) return hit;
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive)
-    return patchHit(*ctx.patch, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID);
+    return patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID);
   hit.t = rayhit.ray.tfar;
   hit.geometry = rayhit.hit.geomID;
   hit.primitive = rayhit.hit.primID;

@@ -32,11 +32,12 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
       g.shadingNormals = true;
       break;
     case Representation::Implicit:
-      g.patches = &model.quadricPatches();
+      g.patches = &model.renderPatches();
       g.patchBytes = model.patchMemoryBytes();
-      if (g.patches->size() != model.patchCount())
-        fail("model '{}': {} quadric patches for {} triangles", model.name(), g.patches->size(),
-             model.patchCount());
+      if (model.quadricPatches().size() != model.patchCount() ||
+          g.patches->size() < model.patchCount())
+        fail("model '{}': {} quadric patches for {} triangles", model.name(),
+             model.quadricPatches().size(), model.patchCount());
       break;
   }
   return g;

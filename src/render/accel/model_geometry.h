@@ -14,7 +14,7 @@ namespace quadtri {
 /// A model as render primitives: triangles (its mesh, or its tessellation) or quadric patches.
 struct ModelGeometry {
   TriangleMesh triangles;                              ///< empty for Implicit models
-  const std::vector<QuadricPatch>* patches = nullptr;  ///< the model's own, for Implicit models
+  const std::vector<QuadricPatch>* patches = nullptr;  ///< renderPatches(), for Implicit models
   bool shadingNormals = false;  ///< the triangles are rendered with their vertex normals
   size_t patchBytes = 0;        ///< SurfaceModel::patchMemoryBytes() for Implicit models
 
@@ -27,7 +27,7 @@ struct ModelGeometry {
 };
 
 /// InputTriangles → the mesh; Tessellated → tessellate(model, tessellation); Implicit → the
-/// model's quadric patches (referenced: the model must outlive the result).
+/// model's render patches (referenced: the model must outlive the result).
 ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tessellation);
 
 /// Adds the geometry to `accel` (one triangle geometry or one user geometry); returns its id.
