@@ -1,5 +1,7 @@
 #include "surface/quadric_patch.h"
 
+#include <cmath>
+
 namespace quadtri {
 
 double evalQuadric(const QuadricCoeffs& q, const Vec3& p) {
@@ -52,6 +54,9 @@ bool nearestRoot(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double
     if (!patch.inside(p)) continue;
     if ((p.array() < patch.bounds.lo.array()).any() || (p.array() > patch.bounds.hi.array()).any())
       continue;
+    if (patch.facing != Vec3::Zero() &&
+        !(patch.orientation * quadricGradient(q, p).dot(patch.facing) > 0.0))
+      continue;
     if (!accept(p)) continue;
     tHit = t;
     return true;
@@ -66,10 +71,30 @@ bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3&
   return nearestRoot(patch, o, d, tmin, tmax, tHit, [](const Vec3&) { return true; });
 }
 
+bool insideQuadric(const QuadricPatch& patch, const Vec3& p) {
+  const QuadricCoeffs& q = patch.q;
+  const double c = patch.orientation * evalQuadric(q, p);
+  if (patch.facing == Vec3::Zero()) return c < 0.0;
+  // orientation·q(p + λ n) = a λ² + b λ + c; its rising root is (−b + √(b²−4ac)) / 2a.
+  const Vec3& n = patch.facing;
+  const double a =
+      patch.orientation * (q[0] * n.x() * n.x() + q[1] * n.y() * n.y() + q[2] * n.z() * n.z() +
+                           q[3] * n.x() * n.y() + q[4] * n.x() * n.z() + q[5] * n.y() * n.z());
+  const double b = patch.orientation * quadricGradient(q, p).dot(n);
+  const double disc = b * b - 4.0 * a * c;
+  if (!(disc >= 0.0)) return a < 0.0;  // no crossing: the sign is a's everywhere on the line
+  const double root = std::sqrt(disc);
+  // The rising root ahead of p (λ > 0), computed without cancellation: with b ≤ 0 as
+  // (−b + √disc) / 2a, otherwise as the equal 2c / (−b − √disc).
+  if (b <= 0.0) return a != 0.0 ? (-b + root) / a > 0.0 : c < 0.0;
+  const double den = -b - root;  // < 0
+  return den != 0.0 ? 2.0 * c / den > 0.0 : c < 0.0;
+}
+
 bool bridgeCovers(const std::vector<QuadricPatch>& primitives, const QuadricPatch& bridge,
                   const Vec3& p) {
-  return outsideQuadric(primitives[size_t(bridge.joins[0])], p) !=
-         outsideQuadric(primitives[size_t(bridge.joins[1])], p);
+  return insideQuadric(primitives[size_t(bridge.joins[0])], p) !=
+         insideQuadric(primitives[size_t(bridge.joins[1])], p);
 }
 
 bool intersectPrimitive(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& o,
@@ -86,7 +111,7 @@ Vec3 primitiveNormal(const std::vector<QuadricPatch>& primitives, size_t index, 
   if (!patch.isBridge()) return safeNormalized(g, Vec3::Zero());
   // The plane's gradient points into the first patch's side: the solid lies on that side where
   // p is inside the first patch's quadric.
-  return safeNormalized(outsideQuadric(primitives[size_t(patch.joins[0])], p) ? g : Vec3(-g),
+  return safeNormalized(insideQuadric(primitives[size_t(patch.joins[0])], p) ? Vec3(-g) : g,
                         Vec3::Zero());
 }
 

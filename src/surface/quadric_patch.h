@@ -37,6 +37,10 @@ struct QuadricPatch {
   /// conics in which their quadrics meet the plane. With it, neighbouring patches that do not
   /// meet exactly still bound a closed solid.
   std::array<int32_t, 2> joins{-1, -1};
+  /// Where non-zero, only the sheet facing this way is kept: points where the oriented gradient
+  /// has a positive component along it (one sheet of a quadric that folds back within the
+  /// clip planes, such as a thin hyperboloid hugging its triangle).
+  Vec3 facing = Vec3::Zero();
 
   bool isBridge() const { return joins[0] >= 0; }
 
@@ -53,11 +57,11 @@ struct QuadricPatch {
 bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double tmin,
                            double tmax, double& tHit);
 
-/// True where p lies outside patch's quadric: orientation·q(p) > 0 (the oriented gradient points
-/// outward).
-inline bool outsideQuadric(const QuadricPatch& patch, const Vec3& p) {
-  return patch.orientation * evalQuadric(patch.q, p) > 0.0;
-}
+/// True where p lies inside the solid that patch bounds: orientation·q(p) < 0 (the oriented
+/// gradient points outward). With a `facing` direction, only the kept sheet counts: p is inside
+/// when the line from p along `facing` crosses the kept sheet (the root where orientation·q
+/// increases) ahead of p, so the sheet the patch drops changes nothing.
+bool insideQuadric(const QuadricPatch& patch, const Vec3& p);
 
 /// True where the bridge `bridge` of `primitives` exists at p (a point of its plane): the two
 /// patches it joins disagree about p's side.

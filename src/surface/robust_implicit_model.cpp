@@ -72,6 +72,35 @@ SharedEdge sharedEdge(const TriangleMesh& mesh, const Edge& edge) {
   return out;
 }
 
+// Largest angle between an edge plane and the bisector of its sides' faces, about the chord.
+constexpr double kMaxPlaneTiltDeg = 45.0;
+
+// Normals far from their faces (folds) can tilt the plane of ni+nj towards a side's face, which
+// leaves that side a sliver of a wedge: its patch is clipped away. Turns the plane about the
+// chord back to kMaxPlaneTiltDeg from the faces' bisector (a no-op on smooth data).
+void keepAwayFromFaces(const TriangleMesh& mesh, const Edge& edge, SharedEdge& shared) {
+  const Vec3& va = mesh.positions[edge.a];
+  const Vec3 e = mesh.positions[edge.b] - va;
+  if (!(e.norm() > 0.0)) return;
+  const Vec3 ehat = e.normalized();
+  Vec3 bisector = Vec3::Zero();
+  for (auto [t, k] : edge.sides) bisector += patchOrientation(mesh, t) * mesh.faceNormal(t);
+  bisector -= bisector.dot(ehat) * ehat;
+  if (!(bisector.norm() > 1e-6)) return;  // a knife edge or degenerate faces: leave it
+  bisector.normalize();
+  Vec3 up = shared.direction - shared.direction.dot(ehat) * ehat;
+  if (!(up.norm() > 0.0)) return;
+  up.normalize();
+  const double maxTilt = kMaxPlaneTiltDeg * kPi / 180.0;
+  if (angleDegrees(up, bisector) <= kMaxPlaneTiltDeg) return;
+  Vec3 across = up - up.dot(bisector) * bisector;
+  across = across.norm() > 0.0 ? Vec3(across.normalized()) : ehat.cross(bisector);
+  up = std::cos(maxTilt) * bisector + std::sin(maxTilt) * across;
+  const Vec3 normal = ehat.cross(up).normalized();
+  shared.plane << normal, -normal.dot(va);
+  shared.direction = up;
+}
+
 }  // namespace
 
 RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> meshIn)
@@ -117,6 +146,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       alignWithCrossing(patches_[edge.sides[0].first].q, patches_[edge.sides[1].first].q,
                         m.positions[edge.a], m.positions[edge.b], edges[i].plane,
                         edges[i].direction);
+    keepAwayFromFaces(m, edge, edges[i]);
   });
   tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
@@ -134,9 +164,55 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       patch.planes[k] = side < 0.0 ? Vec4(-edge.plane) : edge.plane;
     }
     patch.planeCount = 3;
+    patch.facing = frame.faceNormal;
     clipToPatch(t);
+    // Normals no quadric of the pencil follows (a fold, the teapot's knob): the quadric leaves
+    // the wedge or misses the projection lines, so its patch would leave a hole. The triangle's
+    // own plane, clipped by the same edge planes, is the triangle; the bridges join it to its
+    // neighbours.
+    if (!coversItself(t) && frame.faceNormal.squaredNorm() > 0.5) {
+      patch.q.fill(0.0);
+      patch.q[6] = frame.faceNormal.x();
+      patch.q[7] = frame.faceNormal.y();
+      patch.q[8] = frame.faceNormal.z();
+      patch.q[9] = -frame.faceNormal.dot(m.corner(t, 0));
+      patch.orientation = 1.0;
+      frame.flat = true;
+      frame.cornerNormalErrorDeg = 0.0;
+      for (int k = 0; k < 3; ++k)
+        frame.cornerNormalErrorDeg = std::max(frame.cornerNormalErrorDeg,
+                                              angleDegrees(frame.faceNormal, m.cornerNormal(t, k)));
+      clipToPatch(t);
+    }
   });
   addBridges(topo);
+}
+
+bool RobustImplicitModel::coversItself(size_t t) const {
+  const TriangleMesh& m = mesh();
+  const QuadricPatch& patch = patches_[t];
+  const Vec3& n = frames_[t].faceNormal;
+  const double scale =
+      ((m.corner(t, 1) - m.corner(t, 0)).norm() + (m.corner(t, 2) - m.corner(t, 1)).norm() +
+       (m.corner(t, 0) - m.corner(t, 2)).norm()) /
+      3.0;
+  // Lines along the face normal through the triangle's inner lattice points: each must meet
+  // the clipped patch within a mean edge length of the triangle.
+  constexpr int level = 6;
+  for (int j = 1; j < level; ++j)
+    for (int i = 1; i + j < level; ++i) {
+      const double u = double(i) / level, v = double(j) / level;
+      const Vec3 x = (1.0 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);
+      double hit;
+      if (!intersectQuadricPatch(patch, x - scale * n, n, 0.0, 2.0 * scale, hit)) return false;
+    }
+  return true;
+}
+
+size_t RobustImplicitModel::flatCount() const {
+  size_t count = 0;
+  for (const Frame& frame : frames_) count += frame.flat;
+  return count;
 }
 
 void RobustImplicitModel::addBridges(const MeshTopology& topo) {
@@ -283,12 +359,13 @@ void RobustImplicitModel::clipToPatch(size_t t) {
     }
   // Between samples the patch leaves their hull by at most the sagitta κδ²/8; twice that plus
   // a round-off floor, capped where the curvature bound is meaningless (near-singular points).
-  const double margin = std::min(0.25 * curvature * spacing * spacing, scale) + 1e-4 * scale;
+  const double margin = std::min(0.25 * curvature * spacing * spacing, 0.1 * scale) + 1e-4 * scale;
   patch.bounds.inflate(margin);
   frames_[t].boundsMargin = margin;
   // The slab keeps the sheet through the corners: generous on the patch's own height range,
   // far tighter than the distance to any other sheet of a sane fit.
-  const double slab = 0.25 * (hmax - hmin) + margin + 0.01 * scale;
+  // A plane has one sheet: its slab only has to hold the bridges' lenses to its neighbours.
+  const double slab = frame.flat ? 0.5 * scale : 0.25 * (hmax - hmin) + margin + 0.01 * scale;
   const Vec3& nf = frame.faceNormal;
   patch.planes[3] << nf, -nf.dot(centre) - (hmin - slab);
   patch.planes[4] << -nf, nf.dot(centre) + (hmax + slab);
@@ -307,6 +384,7 @@ nlohmann::json RobustImplicitModel::patchJson(size_t t) const {
                  {"max", {patch.bounds.hi.x(), patch.bounds.hi.y(), patch.bounds.hi.z()}}};
   j["orientation"] = patch.orientation;
   j["corner_normal_error_deg"] = frames_[t].cornerNormalErrorDeg;
+  j["flat"] = frames_[t].flat;
   return j;
 }
 

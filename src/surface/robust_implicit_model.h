@@ -38,6 +38,12 @@ namespace quadtri {
 /// bridge (QuadricPatch::joins) fills it with the part of the shared plane where the two
 /// quadrics disagree about inside and outside, and the patches with their bridges bound a
 /// closed solid. Edges where the two sides meet to round-off (data from a quadric) get none.
+///
+/// Where the normals are such that no member of the pencil follows them (a fold, such as the
+/// ring around the teapot's knob), the quadric leaves its wedge or misses the lines evaluate
+/// projects along, and its patch would not cover the triangle. Such a patch falls back to the
+/// triangle's own plane (the same edge planes then clip it to the triangle), and its bridges
+/// join it to its neighbours: a flat facet rather than a hole.
 class RobustImplicitModel final : public SurfaceModel {
  public:
   explicit RobustImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
@@ -50,6 +56,9 @@ class RobustImplicitModel final : public SurfaceModel {
   size_t patchMemoryBytes() const override { return primitives_.size() * sizeof(QuadricPatch); }
   /// Number of edge bridges among renderPatches().
   size_t bridgeCount() const { return primitives_.size() - patches_.size(); }
+  /// Number of patches that fell back to their triangle's plane.
+  size_t flatCount() const;
+  bool isFlat(size_t t) const { return frames_[t].flat; }
   nlohmann::json patchJson(size_t t) const override;
 
   /// Largest angle (degrees) between the quadric's normal at a corner of patch t and the
@@ -66,7 +75,9 @@ class RobustImplicitModel final : public SurfaceModel {
     Vec3 faceNormal;
     double cornerNormalErrorDeg = 0.0;
     double boundsMargin = 0.0;  ///< how far the patch may leave the hull of its samples
+    bool flat = false;          ///< fell back to the triangle's plane (see the class comment)
   };
+  bool coversItself(size_t t) const;
   void clipToPatch(size_t t);
   void addBridges(const MeshTopology& topo);
 

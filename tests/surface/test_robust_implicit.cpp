@@ -380,6 +380,93 @@ TEST(RobustImplicitModel, InconsistentNormalsStillCoverTheTriangle) {
   }
 }
 
+// A saddle whose normals are tilted at random by `amplitude` (folds, as around the teapot's
+// knob); counts lines along face normals through the triangles that meet no patch or bridge.
+struct FoldedSaddle {
+  size_t flat = 0, lines = 0, missed = 0;
+};
+
+FoldedSaddle foldedSaddle(double amplitude, uint64_t seed) {
+  Rng rng(seed);
+  const auto mesh = saddleGrid(6, 1.0);
+  for (Vec3& n : mesh->normals) n = (n + amplitude * randomUnit(rng)).normalized();
+  for (Vec3& n : mesh->normals)
+    if (n.z() < 0.05) n = (n + Vec3(0, 0, 0.2 - n.z())).normalized();
+  const RobustImplicitModel model(mesh);
+  FoldedSaddle out;
+  out.flat = model.flatCount();
+  for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+    const Vec3 n = mesh->faceNormal(t);
+    const double h = edgeScale(*mesh, t);
+    for (int sample = 0; sample < 12; ++sample) {
+      const double u = uniform(rng, 0.02, 0.96), v = uniform(rng, 0.02, 0.98 - u);
+      const Vec3 x =
+          (1 - u - v) * mesh->corner(t, 0) + u * mesh->corner(t, 1) + v * mesh->corner(t, 2);
+      ++out.lines;
+      out.missed += crossings(model, x - h * n, n, 2.0 * h).empty();
+    }
+    if (model.isFlat(t)) {  // the triangle's own plane
+      const QuadricPatch& p = model.quadricPatches()[t];
+      for (int k = 0; k < 3; ++k) EXPECT_LT(std::abs(evalQuadric(p.q, mesh->corner(t, k))), 1e-12);
+      EXPECT_NEAR(quadricGradient(p.q, Vec3::Zero()).norm(), 1.0, 1e-12);
+    }
+  }
+  return out;
+}
+
+TEST(RobustImplicitModel, FoldedNormalsLeaveFewHoles) {
+  // Normals tilted at random by up to ~35° (amplitude 0.6) and ~80° (1.0) from a saddle's.
+  // Where no quadric covers its triangle the patch becomes the triangle's plane. Holes are rare
+  // but not gone: near an edge whose plane had to be turned (keepAwayFromFaces), a line can
+  // leave the wedge before it meets the patch. Measured: 0, 1, 3 of 864 lines at 0.6 and 2, 7,
+  // 3 at 1.0 (seeds 21-23); the smooth meshes' tests show none.
+  size_t flat = 0, lines = 0, missed = 0;
+  for (double amplitude : {0.6, 1.0})
+    for (uint64_t seed : {21, 22, 23}) {
+      const FoldedSaddle s = foldedSaddle(amplitude, seed);
+      EXPECT_LT(double(s.missed) / double(s.lines), 0.012) << amplitude << " " << seed;
+      flat += s.flat;
+      lines += s.lines;
+      missed += s.missed;
+    }
+  EXPECT_GT(flat, 0u);
+  EXPECT_LT(double(missed) / double(lines), 0.005);
+}
+
+TEST(RobustImplicitModel, SmoothMeshesNeedNoFlatFallback) {
+  for (const char* spec : {"icosphere:2", "torus:1,0.35,24,12", "ellipsoid:1,0.7,0.5"})
+    EXPECT_EQ(RobustImplicitModel(builtin(spec)).flatCount(), 0u) << spec;
+}
+
+TEST(QuadricPatchFacing, KeepsOneSheetAndItsInside) {
+  // z² − ε² = 0: two planes z = ±ε. Facing +z keeps z = +ε (its outward gradient is +z).
+  const double eps = 0.1;
+  QuadricPatch p;
+  p.q = {0, 0, 1, 0, 0, 0, 0, 0, 0, -eps * eps};
+  p.bounds.extend(Vec3(-1, -1, -1));
+  p.bounds.extend(Vec3(1, 1, 1));
+  double t = 0;
+  ASSERT_TRUE(intersectQuadricPatch(p, Vec3(0, 0, -0.5), Vec3(0, 0, 1), 0.0, 1.0, t));
+  EXPECT_NEAR(t, 0.5 - eps, 1e-15);  // without facing, the lower plane comes first
+  p.facing = Vec3(0, 0, 1);
+  ASSERT_TRUE(intersectQuadricPatch(p, Vec3(0, 0, -0.5), Vec3(0, 0, 1), 0.0, 1.0, t));
+  EXPECT_NEAR(t, 0.5 + eps, 1e-15);
+  ASSERT_TRUE(intersectQuadricPatch(p, Vec3(0, 0, 0.5), Vec3(0, 0, -1), 0.0, 1.0, t));
+  EXPECT_NEAR(t, 0.5 - eps, 1e-15);
+  // Inside is below the kept sheet, whatever the dropped one says.
+  for (double z : {-0.5, -0.2, -0.05, 0.0, 0.05, 0.099})
+    EXPECT_TRUE(insideQuadric(p, Vec3(0.3, -0.2, z))) << z;
+  for (double z : {0.101, 0.2, 0.5}) EXPECT_FALSE(insideQuadric(p, Vec3(0.3, -0.2, z))) << z;
+  // A sphere (one sheet facing +z on its upper half): inside is inside.
+  QuadricPatch s;
+  s.q = {1, 1, 1, 0, 0, 0, 0, 0, 0, -1};
+  s.facing = Vec3(0, 0, 1);
+  EXPECT_TRUE(insideQuadric(s, Vec3(0.2, 0.1, 0.5)));
+  EXPECT_TRUE(insideQuadric(s, Vec3(0.2, 0.1, -0.5)));
+  EXPECT_FALSE(insideQuadric(s, Vec3(0.2, 0.1, 1.5)));
+  EXPECT_FALSE(insideQuadric(s, Vec3(3, 0, 0)));  // the line along +z misses the sphere
+}
+
 TEST(RobustImplicitModel, DegenerateTrianglesGiveFiniteOutput) {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(0, 1, 0),
