@@ -19,7 +19,8 @@ Action addConvertCommand(CLI::App& app) {
       "convert",
       "Convert a mesh with one model. OBJ/PLY output: the model's surface tessellated (a "
       "triangle lattice of level N per patch, N² triangles; default 8), or the input triangles "
-      "for flat/shading. JSON output: {\"model\", \"triangles\", \"tessellation\", \"patches\"} "
+      "for flat, shading and shading-offset. JSON output: {\"model\", \"triangles\", "
+      "\"tessellation\", \"patches\"} "
       "with each patch's data.");
   sub->add_option("mesh", opt->mesh, "Mesh file (OBJ, PLY, ...) or built-in shape (icosphere:3)")
       ->required();

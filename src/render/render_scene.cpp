@@ -7,6 +7,7 @@
 #include "render/emitter/point_emitter.h"
 #include "render/emitter/sphere_area_emitter.h"
 #include "surface/quadric_patch.h"
+#include "surface/shading_offset.h"
 
 namespace quadtri {
 namespace {
@@ -53,6 +54,7 @@ void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
   }
   record.normals = geometry.shadingNormals ? GeometryRecord::Normals::Interpolated
                                            : GeometryRecord::Normals::Geometric;
+  record.liftRayOrigins = geometry.liftRayOrigins;
   record.mesh = std::make_shared<TriangleMesh>(std::move(geometry.triangles));
   bounds_.extend(record.mesh->bounds());
   if (areaRadiance) {
@@ -164,6 +166,7 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
         patch.isBridge() ? primitiveShadingNormal(patches, hit.primitive, p) : si.geometricNormal;
     si.offset =
         floatErrorOffset(std::max({maxAbs(p), maxAbs(patch.bounds.lo), maxAbs(patch.bounds.hi)}));
+    si.liftedP = p;
     return si;
   }
   const TriangleMesh& mesh = *record.mesh;
@@ -180,13 +183,20 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
                        si.geometricNormal);
   si.offset = floatErrorOffset(
       std::max({maxAbs(mesh.corner(t, 0)), maxAbs(mesh.corner(t, 1)), maxAbs(mesh.corner(t, 2))}));
+  if (record.liftRayOrigins) {
+    si.liftedP = shadingOffsetPoint(mesh, t, Vec3(b0, hit.u, hit.v));
+    si.lifted = true;
+  } else {
+    si.liftedP = si.p;
+  }
   return si;
 }
 
 Ray RenderScene::spawnRay(const SurfaceInteraction& si, const Vec3& direction) const {
   Ray ray;
   const double side = direction.dot(si.geometricNormal) >= 0.0 ? 1.0 : -1.0;
-  ray.origin = si.p + side * si.offset * si.geometricNormal;
+  const Vec3& base = si.lifted && direction.dot(si.shadingNormal) > 0.0 ? si.liftedP : si.p;
+  ray.origin = base + side * si.offset * si.geometricNormal;
   ray.direction = direction;
   ray.tnear = 0.0;
   ray.tfar = kInfinity;

@@ -23,6 +23,9 @@ struct GeometryRecord {
     Interpolated,  ///< barycentric interpolation of per-corner normals, renormalised, no correction
     Gradient,      ///< quadric patches: the oriented, normalised gradient
   } normals = Normals::Geometric;
+  /// shading-offset: rays leaving towards the shading normal's side start from the lifted point
+  /// of shadingOffsetPoint (only with Interpolated normals on triangles).
+  bool liftRayOrigins = false;
   std::shared_ptr<const TriangleMesh> mesh;            ///< triangles, in world space
   const std::vector<QuadricPatch>* patches = nullptr;  ///< patches, in world space
   std::shared_ptr<const void> owner;                   ///< keeps `patches` alive
@@ -37,6 +40,10 @@ struct SurfaceInteraction {
   Vec3 shadingNormal;    ///< unit
   double t = 0.0;
   double offset = 0.0;  ///< distance along geometricNormal that clears the surface's float error
+  /// With a lifting record (shading-offset): the shadow-terminator offset point of the hit, the
+  /// origin of rays that leave towards the shading normal's side; equals p otherwise.
+  Vec3 liftedP;
+  bool lifted = false;
   const GeometryRecord* geometry = nullptr;
 };
 
@@ -73,6 +80,9 @@ class RenderScene {
   /// A ray leaving `si` along unit `direction`, its origin pushed by si.offset along the
   /// geometric normal to the side `direction` leaves on, so it cannot find the surface it
   /// starts on (the float error of the hit is below the offset) yet does not skip a nearby one.
+  /// On shading-offset geometry a ray with direction·shadingNormal > 0 (shadow rays and
+  /// reflected BSDF rays alike) starts from si.liftedP instead of si.p before that push; rays
+  /// into the surface (transmission) start from si.p.
   Ray spawnRay(const SurfaceInteraction& si, const Vec3& direction) const;
   /// A shadow ray from `si` to `target` on a surface of unit normal `targetNormal` (zero for a
   /// point in space): the target too is pushed off its surface, towards the ray's side, by its

@@ -4,6 +4,18 @@
 
 namespace quadtri {
 
+std::string_view FlatModel::name() const {
+  switch (normals_) {
+    case Normals::Geometric:
+      return "flat";
+    case Normals::Interpolated:
+      return "shading";
+    case Normals::InterpolatedOffset:
+      return "shading-offset";
+  }
+  return "flat";
+}
+
 SurfacePoint FlatModel::evaluate(size_t t, double u, double v) const {
   const TriangleMesh& m = mesh();
   const Vec3 p = (1.0 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);

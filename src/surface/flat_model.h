@@ -1,4 +1,4 @@
-// `flat` and `shading`: the input triangles themselves.
+// `flat`, `shading` and `shading-offset`: the input triangles themselves.
 #pragma once
 
 #include "surface/model.h"
@@ -6,20 +6,28 @@
 namespace quadtri {
 
 /// The input triangles. `flat` renders with geometric normals; `shading` (the thesis' baseline
-/// "Triángulos shading") renders the same geometry with interpolated shading normals. Both have
-/// the flat triangle as their geometric surface, so their analysis is identical.
+/// "Triángulos shading") renders the same geometry with interpolated shading normals;
+/// `shading-offset` is `shading` whose rays leave from origins lifted by the shadow-terminator
+/// offset (shading_offset.h). All three have the flat triangle as their geometric surface, so
+/// their analysis is identical.
 class FlatModel final : public SurfaceModel {
  public:
-  FlatModel(std::shared_ptr<const TriangleMesh> mesh, bool interpolateNormals)
-      : SurfaceModel(std::move(mesh)), shading_(interpolateNormals) {}
-  std::string_view name() const override { return shading_ ? "shading" : "flat"; }
+  enum class Normals {
+    Geometric,           ///< flat
+    Interpolated,        ///< shading
+    InterpolatedOffset,  ///< shading-offset
+  };
+  FlatModel(std::shared_ptr<const TriangleMesh> mesh, Normals normals)
+      : SurfaceModel(std::move(mesh)), normals_(normals) {}
+  std::string_view name() const override;
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Representation representation() const override { return Representation::InputTriangles; }
-  bool interpolatesShadingNormals() const override { return shading_; }
+  bool interpolatesShadingNormals() const override { return normals_ != Normals::Geometric; }
+  bool liftsRayOrigins() const override { return normals_ == Normals::InterpolatedOffset; }
   nlohmann::json patchJson(size_t t) const override;
 
  private:
-  bool shading_;
+  Normals normals_;
 };
 
 }  // namespace quadtri

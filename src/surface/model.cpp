@@ -24,6 +24,7 @@ const std::vector<std::string>& modelNames() {
   static const std::vector<std::string> names = {
       "flat",
       "shading",
+      "shading-offset",
       "quadric-edges",
       "quadric-param",
       "quadric-implicit",
@@ -38,8 +39,12 @@ const std::vector<std::string>& modelNames() {
 
 std::unique_ptr<SurfaceModel> makeModel(std::string_view name,
                                         std::shared_ptr<const TriangleMesh> mesh) {
-  if (name == "flat") return std::make_unique<FlatModel>(std::move(mesh), false);
-  if (name == "shading") return std::make_unique<FlatModel>(std::move(mesh), true);
+  if (name == "flat")
+    return std::make_unique<FlatModel>(std::move(mesh), FlatModel::Normals::Geometric);
+  if (name == "shading")
+    return std::make_unique<FlatModel>(std::move(mesh), FlatModel::Normals::Interpolated);
+  if (name == "shading-offset")
+    return std::make_unique<FlatModel>(std::move(mesh), FlatModel::Normals::InterpolatedOffset);
   if (name == "quadric-edges")
     return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::Transfinite);
   if (name == "quadric-param") return std::make_unique<ParamModel>(std::move(mesh));

@@ -22,7 +22,7 @@ struct SurfacePoint {
 
 /// How the renderer and the crack-rate analysis draw a model.
 enum class Representation {
-  InputTriangles,  ///< the mesh's own triangles (flat, shading)
+  InputTriangles,  ///< the mesh's own triangles (flat, shading, shading-offset)
   Tessellated,     ///< a triangle lattice evaluated on each patch (tessellate.h)
   Implicit,        ///< quadric patches intersected directly (quadric_patch.h)
 };
@@ -50,6 +50,9 @@ class SurfaceModel {
   virtual bool sharesEdges() const { return true; }
   /// For InputTriangles: whether the renderer interpolates the mesh's shading normals.
   virtual bool interpolatesShadingNormals() const { return false; }
+  /// For InputTriangles: whether rays leaving towards the shading normal's side start from the
+  /// shadow-terminator offset point (shading_offset.h) instead of the hit.
+  virtual bool liftsRayOrigins() const { return false; }
   /// Implicit models: their quadric patches, one per triangle; empty otherwise.
   virtual const std::vector<QuadricPatch>& quadricPatches() const;
   /// Implicit models: what the renderer and the crack-rate analysis trace, the patches first

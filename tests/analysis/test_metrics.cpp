@@ -44,6 +44,33 @@ TEST(Metrics, FlatAndShadingOnTheIcosahedron) {
   }
 }
 
+// `shading-offset` only moves ray origins: it is shading's geometry, so every key but the
+// model name (and the caller's conversion time) is shading's, bit for bit, through the JSON too.
+TEST(Metrics, ShadingOffsetMeasuresExactlyAsShading) {
+  ShapeParams p;
+  p.level = 2;
+  const BuiltinMesh sphere = makeBuiltin("icosphere", p);
+  const auto mesh = std::make_shared<const TriangleMesh>(sphere.mesh);
+  AnalysisOptions options;
+  options.crack.lines = 5000;
+  const ModelMetrics a =
+      analyzeModel(*makeModel("shading", mesh), "icosphere:2", sphere.truth, 0.25, options);
+  const ModelMetrics b =
+      analyzeModel(*makeModel("shading-offset", mesh), "icosphere:2", sphere.truth, 0.25, options);
+  EXPECT_EQ(b.model, "shading-offset");
+  nlohmann::ordered_json ja = toJson(a), jb = toJson(b);
+  EXPECT_EQ(jb["model"], "shading-offset");
+  ja.erase("model");
+  jb.erase("model");
+  EXPECT_EQ(ja, jb);
+  EXPECT_EQ(b.primitives, 320u);
+  // 162 float3 positions, 320 uint3 triangles and 162 float3 normals.
+  EXPECT_EQ(b.memoryBytes, (162u + 320u + 162u) * 12u);
+  ASSERT_TRUE(b.c1AngleDeg && b.crackRate && b.truthDistance);
+  EXPECT_GT(*b.c1AngleDeg, 5.0);
+  EXPECT_EQ(*b.crackRate, 0.0);
+}
+
 TEST(Metrics, EdgeSamplesMatchAcrossOppositeTraversals) {
   // Linear patches of a welded mesh agree along every shared edge only if each side maps the
   // edge parameter in its own direction; mixed windings exercise both mappings.

@@ -80,6 +80,45 @@ TEST(SceneBuilder, ModelOverrideAppliesToMeshesOnly) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(SceneBuilder, ShadingOffsetFromTheSceneFileLiftsRayOrigins) {
+  // An icosahedron scaled by 2 with the sphere's normals: its hits lift outwards in world
+  // space; the rectangle and the `shading` override do not lift.
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "quadtri_scene_builder_offset";
+  std::filesystem::create_directories(dir);
+  saveMesh(makeBuiltin("icosahedron").mesh, dir / "ico.obj");
+  const std::string body = std::string(kSensor) + R"(
+    <shape type="obj"><string name="filename" value="ico.obj"/>
+      <string name="model" value="shading-offset"/>
+      <transform name="to_world"><scale value="2"/></transform></shape>
+    <shape type="rectangle"><transform name="to_world"><translate value="0, 0, -3"/></transform></shape>)";
+  Ray ray;
+  ray.origin = Vec3(0.1, 0.2, 5);
+  ray.direction = Vec3(0, 0, -1);
+  Ray toRectangle;
+  toRectangle.origin = Vec3(0.5, 0.9, -2);
+  toRectangle.direction = Vec3(0, 0, -1);
+  for (const std::optional<std::string>& model :
+       {std::optional<std::string>(), std::optional<std::string>("shading-offset"),
+        std::optional<std::string>("shading")}) {
+    const bool lifts = !model || *model == "shading-offset";
+    const BuiltScene b = build(body, dir / "s.xml", model);
+    const auto si = b.scene->intersect(ray);
+    ASSERT_TRUE(si);
+    EXPECT_EQ(si->geometry->normals, GeometryRecord::Normals::Interpolated);
+    EXPECT_EQ(si->geometry->liftRayOrigins, lifts);
+    EXPECT_EQ(si->lifted, lifts);
+    if (lifts)
+      EXPECT_GT(si->liftedP.norm(), si->p.norm() + 0.05);
+    else
+      EXPECT_EQ(si->liftedP, si->p);
+    const auto wall = b.scene->intersect(toRectangle);
+    ASSERT_TRUE(wall);
+    EXPECT_FALSE(wall->lifted);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SceneBuilder, ErrorsNameTheXmlLine) {
   // An area light on a non-uniformly scaled sphere (line 2 of the body's scene).
   const std::string sphere =

@@ -26,6 +26,7 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
     case Representation::InputTriangles:
       g.triangles = model.mesh();
       g.shadingNormals = model.interpolatesShadingNormals();
+      g.liftRayOrigins = g.shadingNormals && model.liftsRayOrigins();
       break;
     case Representation::Tessellated:
       g.triangles = tessellate(model, tessellation);

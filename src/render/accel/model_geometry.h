@@ -16,6 +16,7 @@ struct ModelGeometry {
   TriangleMesh triangles;                              ///< empty for Implicit models
   const std::vector<QuadricPatch>* patches = nullptr;  ///< renderPatches(), for Implicit models
   bool shadingNormals = false;  ///< the triangles are rendered with their vertex normals
+  bool liftRayOrigins = false;  ///< SurfaceModel::liftsRayOrigins() (shading-offset)
   size_t patchBytes = 0;        ///< SurfaceModel::patchMemoryBytes() for Implicit models
 
   /// Triangles or patches handed to Embree.
