@@ -69,8 +69,9 @@ void marker(Canvas& c, int x, int y, int r, Marker m, const Rgb& color) {
         case Marker::Square:
           on = std::abs(dx) <= r && std::abs(dy) <= r;
           break;
-        case Marker::Circle:
-          on = dx * dx + dy * dy <= (r + 1) * (r + 1) - 1;
+        case Marker::Circle:  // a ring with a centre dot, so it reads apart from a square
+          on = dx * dx + dy * dy == 0 ||
+               (dx * dx + dy * dy <= (r + 1) * (r + 1) && dx * dx + dy * dy >= (r - 1) * (r - 1));
           break;
         case Marker::Triangle:  // apex up, base at dy = r
           on = dy >= -r - 1 && dy <= r && 2 * std::abs(dx) <= dy + r + 1;
