@@ -29,6 +29,9 @@ Action addMeshCommand(CLI::App& app) {
   sub->add_option("--radii", opt->radii, "Ellipsoid semi-axes a b c")->expected(3);
   sub->add_option("--major", opt->params.major, "Torus major radius")->capture_default_str();
   sub->add_option("--minor", opt->params.minor, "Torus minor radius")->capture_default_str();
+  sub->add_option("--cells", opt->params.cells,
+                  "genus2: marching-tetrahedra grid cells along the shape's length")
+      ->capture_default_str();
   sub->add_option("--normals", opt->normals,
                   "Vertex normals: analytic (true surface) or average (thesis eq. 2.8)")
       ->check(CLI::IsMember({"analytic", "average"}))

@@ -9,6 +9,7 @@ namespace quadtri::cli {
 using Action = std::function<int()>;
 
 Action addAnalyzeCommand(CLI::App& app);
+Action addConvergenceCommand(CLI::App& app);
 Action addConvertCommand(CLI::App& app);
 Action addFigureCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);

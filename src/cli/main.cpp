@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     commands.emplace_back(app.get_subcommands({})[before], std::move(action));
   };
   add(&quadtri::cli::addAnalyzeCommand);
+  add(&quadtri::cli::addConvergenceCommand);
   add(&quadtri::cli::addConvertCommand);
   add(&quadtri::cli::addFigureCommand);
   add(&quadtri::cli::addMeshCommand);

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "math/error.h"
+#include "mesh/isosurface.h"
 #include "mesh/normals.h"
 
 namespace quadtri {
@@ -29,8 +30,10 @@ double ellipsoidDistance(const Vec3& radii, const Vec3& p) {
   double lo = -minR2, hi = q.norm() * radii.maxCoeff();
   // F(lo+) may be finite when the component on the smallest axis vanishes; bisection on the
   // bracket [lo, hi] still converges to the relevant root of the monotone branch.
-  for (int it = 0; it < 200; ++it) {
+  // Until the bracket is two adjacent doubles (at most ~2100 halvings; some 60 in practice).
+  for (int it = 0; it < 2200; ++it) {
     const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
     if (F(mid) > 0.0)
       lo = mid;
     else
@@ -46,6 +49,37 @@ double ellipsoidDistance(const Vec3& radii, const Vec3& p) {
   const double rn = radial.norm();
   const double radialBound = rn > 0 ? (q - q / rn).norm() : radii.minCoeff();
   return std::min(d, radialBound);
+}
+
+// The genus-2 pretzel f = g² + z² − r², g = x⁴ − x² + y² (see AnalyticSurface).
+ImplicitFunction genus2Function(double r) {
+  ImplicitFunction f;
+  f.value = [r](const Vec3& p) {
+    const double x2 = p.x() * p.x();
+    const double g = x2 * x2 - x2 + p.y() * p.y();
+    return g * g + p.z() * p.z() - r * r;
+  };
+  f.gradient = [](const Vec3& p) {
+    const double x2 = p.x() * p.x();
+    const double g = x2 * x2 - x2 + p.y() * p.y();
+    return Vec3(2 * g * (4 * x2 * p.x() - 2 * p.x()), 4 * g * p.y(), 2 * p.z());
+  };
+  return f;
+}
+
+// The pretzel's half length: its tips, where g = r on the x axis.
+double genus2HalfLength(double r) {
+  return std::sqrt((1 + std::sqrt(1 + 4 * r)) / 2);
+}
+
+constexpr double kGenus2Tube = 0.2;
+
+TriangleMesh genus2Mesh(int cells) {
+  const double r = kGenus2Tube;
+  // |y| ≤ sqrt(1/4 + r) and |z| ≤ r on the surface; the uneven margins keep grid planes off
+  // the symmetry planes, so the mesh is irregular and no grid point sits on the surface.
+  const Vec3 half(genus2HalfLength(r) + 0.1031, std::sqrt(0.25 + r) + 0.1053, r + 0.1072);
+  return marchingTetrahedra(genus2Function(r), -half, half + Vec3(0.0137, 0.0091, 0.0113), cells);
 }
 
 struct MeshBuilder {
@@ -174,6 +208,32 @@ double AnalyticSurface::distance(const Vec3& p) const {
       const double rho = std::hypot(p.x(), p.y()) - a;
       return std::abs(std::hypot(rho, p.z()) - b);
     }
+    case Kind::Genus2: {
+      const ImplicitFunction f = genus2Function(a);
+      // The critical points of f lie on z = 0, where ∂f/∂z = 2z vanishes: a nudge along z
+      // gives Newton a direction there.
+      for (const double nudge : {0.0, 1e-3}) {
+        try {
+          // Newton lands near, not at, the nearest point (its path follows ∇f, which bends);
+          // projecting p onto the tangent plane there and landing again converges to the foot
+          // point at a rate of about dκ per round. Every q is on the surface: an upper bound.
+          Vec3 q = projectOntoZeroSet(f, p + Vec3(0, 0, nudge * size()));
+          double best = (q - p).norm();
+          for (int round = 0; round < 8; ++round) {
+            const Vec3 n = f.gradient(q).normalized();
+            const Vec3 next = projectOntoZeroSet(f, p - (p - q).dot(n) * n);
+            const double moved = (next - q).norm();
+            q = next;
+            best = std::min(best, (q - p).norm());
+            if (moved <= 1e-15 * size()) break;
+          }
+          return best;
+        } catch (const Error&) {
+        }
+      }
+      const double g = f.gradient(p).norm();
+      return g > 0 ? std::abs(f.value(p)) / g : size();
+    }
   }
   return 0.0;
 }
@@ -189,6 +249,14 @@ Vec3 AnalyticSurface::normal(const Vec3& p) const {
       const Vec3 center = rxy > 0 ? Vec3(p.x() / rxy * a, p.y() / rxy * a, 0.0) : Vec3(a, 0, 0);
       return safeNormalized(p - center);
     }
+    case Kind::Genus2: {
+      const ImplicitFunction f = genus2Function(a);
+      try {
+        return safeNormalized(f.gradient(projectOntoZeroSet(f, p)));
+      } catch (const Error&) {
+        return safeNormalized(f.gradient(p));
+      }
+    }
   }
   return Vec3(0, 0, 1);
 }
@@ -201,13 +269,16 @@ double AnalyticSurface::size() const {
       return std::max({a, b, c});
     case Kind::Torus:
       return a + b;
+    case Kind::Genus2:
+      return genus2HalfLength(a);
   }
   return 1.0;
 }
 
 const std::vector<std::string>& builtinShapeNames() {
-  static const std::vector<std::string> names = {
-      "triangle", "tetrahedron", "icosahedron", "icosphere", "uv-sphere", "ellipsoid", "torus"};
+  static const std::vector<std::string> names = {"triangle",  "tetrahedron", "icosahedron",
+                                                 "icosphere", "uv-sphere",   "ellipsoid",
+                                                 "torus",     "genus2"};
   return names;
 }
 
@@ -265,6 +336,12 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
     b.truth = AnalyticSurface{AnalyticSurface::Kind::Torus, params.major, params.minor, 0};
     b.description = fmt::format("torus R={} r={} {}x{}", params.major, params.minor,
                                 params.segments, params.rings);
+  } else if (name == "genus2") {
+    if (params.cells < 8 || params.cells > 1024)
+      fail("genus2 cells {} is out of range: expected 8 to 1024", params.cells);
+    b.mesh = genus2Mesh(params.cells);
+    b.truth = AnalyticSurface{AnalyticSurface::Kind::Genus2, kGenus2Tube, 0, 0};
+    b.description = fmt::format("genus-2 pretzel, {} cells", params.cells);
   } else {
     fail("unknown built-in shape '{}': expected one of {}", name,
          fmt::join(builtinShapeNames(), ", "));
@@ -309,6 +386,9 @@ std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
       fail("built-in shape '{}': a torus takes R,r (and segments,rings)", spec);
     if (v.size() >= 3) p.segments = int(v[2]);
     if (v.size() >= 4) p.rings = int(v[3]);
+  } else if (name == "genus2") {
+    need(0, 1);
+    if (!v.empty()) p.cells = int(v[0]);
   } else {
     need(0, 0);
   }

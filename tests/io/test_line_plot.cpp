@@ -44,6 +44,32 @@ TEST(LinePlot, MarkersAreDrawnInTheSeriesColourAtTheirPoints) {
   EXPECT_EQ(plot.get(qx, qy), (Rgb{1, 1, 1}));
 }
 
+TEST(LinePlot, LogLogFrameAndMarkersOfEveryShape) {
+  const Rgb red{1, 0, 0}, blue{0, 0, 1};
+  const std::vector<PlotSeries> series = {
+      {"a", red, {{20, 0.05}, {320, 3e-3}, {5120, 2e-4}}, Marker::Circle},
+      {"", blue, {{64, 0.02}, {1024, 1e-3}}, Marker::Triangle},
+      {"", red, {{100, 1e-5}}, Marker::Cross}};
+  PlotOptions options;
+  options.logY = true;
+  options.legendWidth = 200;
+  options.markerLegend = {{"sphere", Marker::Circle}, {"torus", Marker::Triangle}};
+  const PlotFrame f = plotFrame(series, options);
+  EXPECT_EQ(f.y0, -5.0);
+  EXPECT_EQ(f.y1, -1.0);
+  EXPECT_EQ(f.right, options.width - 24 - 200);
+  EXPECT_EQ(f.toPixel(10, 1e-5).second, f.bottom);
+  EXPECT_EQ(f.toPixel(10, 0.1).second, f.top);
+  EXPECT_NEAR(f.toPixel(10, 1e-3).second, (f.top + f.bottom) / 2.0, 1.0);
+  const Canvas plot = linePlot(series, options);
+  for (const PlotSeries& s : series)
+    for (const auto& [x, y] : s.points) {
+      const auto [px, py] = f.toPixel(x, y);
+      EXPECT_EQ(plot.get(px, py), s.color) << x;
+    }
+  EXPECT_THROW(plotFrame({{"zero", red, {{10, 0.0}}}}, options), Error);
+}
+
 TEST(LinePlot, RejectsPointsItCannotDraw) {
   EXPECT_THROW(plotFrame({{"bad", {0, 0, 0}, {{0.0, 1.0}}}}, PlotOptions{}), Error);
   EXPECT_THROW(plotFrame({{"nan", {0, 0, 0}, {{1.0, std::nan("")}}}}, PlotOptions{}), Error);
