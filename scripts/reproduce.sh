@@ -3,12 +3,16 @@
 # docs/images/*.png and docs/results/*.csv.
 #
 # Usage: scripts/reproduce.sh [--quick|--full]
-#   --quick (default): 96x96 images, 32 spp in setup (a); 88x88, adaptive up to 64 spp in (b)
-#                      icospheres of levels 0..6 (20 .. 81,920 patches) at 128x128, 16 spp.
-#                      A few minutes on 2 cores.
+#   --quick (default): 96x96 images, 32 spp in setup (a); 88x88, adaptive up to 64 spp in (b),
+#                      each cell rendered 3 times; icospheres of levels 0..7 (20 .. 327,680
+#                      patches) at 128x128, 16 spp, each cell rendered 5 times. About 4 minutes
+#                      on 2 cores.
 #   --full:            the scenes' own settings: 256x256, 64 spp (a), adaptive up to 500 spp (b),
-#                      icospheres of levels 0..7 (up to 327,680 patches) at 128x128, 16 spp, and
-#                      the teapot in table 5.1 too. Hours on 2 cores.
+#                      each cell rendered 3 times, icospheres of levels 0..7 at 128x128, 16 spp,
+#                      5 times, and the teapot in table 5.1 too. Hours on 2 cores.
+# Render times: `quadtri figure --repeat N` builds a shape's models together and renders them in
+# N rounds, rotating the models' order each round; the tables give the median over rounds of the
+# side-by-side ratio and, in brackets, its range over the rounds.
 # Needs a built quadtri (QUADTRI=path/to/quadtri, default build/src/cli/quadtri), and node/npm
 # once for the Utah teapot (scripts/fetch-teapot.sh writes data/teapot.obj). Intermediate files
 # go to out/reproduce/. Only bash, awk and quadtri itself are used.
@@ -27,10 +31,11 @@ quadtri=${QUADTRI:-build/src/cli/quadtri}
 shapes=triangle,tetrahedron,icosahedron,teapot
 models=shading,quadric-edges,quadric-param,quadric-implicit
 if [ "$mode" = quick ]; then
-  grid_a=(--res 96 --spp 32); grid_b=(--res 88 -D spp=64)
-  levels=6; scaling=(--res 128 --spp 16); table_shapes="triangle tetrahedron icosahedron"
+  grid_a=(--res 96 --spp 32 --repeat 3); grid_b=(--res 88 -D spp=64 --repeat 3)
+  levels=7; scaling=(--res 128 --spp 16 --repeat 5); table_shapes="triangle tetrahedron icosahedron"
 else
-  grid_a=(); grid_b=(); levels=7; scaling=(); table_shapes="triangle tetrahedron icosahedron data/teapot.obj"
+  grid_a=(--repeat 3); grid_b=(--repeat 3); levels=7; scaling=(--repeat 5)
+  table_shapes="triangle tetrahedron icosahedron data/teapot.obj"
 fi
 
 work=out/reproduce
@@ -51,14 +56,30 @@ icospheres=$(seq -s, -f 'icosphere-%g' 0 "$levels")
   --models shading,quadric-param,quadric-implicit "${scaling[@]}" \
   -o "$work/scaling_grid.png" --csv docs/results/times_scaling.csv \
   --ratio-plot docs/images/fig5_5_ratio.png
+# Figures 5.3 and 5.4 (corners-only and 2500-point tessellations of the parametric models),
+# 5.6 and 6.2 (the implicit model's heatmaps on the icosahedron and the teapot).
+for s in tetrahedron icosahedron; do
+  "$quadtri" analyze "$s" --heatmaps "$work/views-$s" >/dev/null 2>&1
+  for m in quadric-edges quadric-param; do
+    for k in corners 2500; do cp "$work/views-$s/$m-view-$k.png" "docs/images/fig5_3_4_$s-$m-$k.png"; done
+  done
+done
 # Table 5.1 (thesis tessellation: 4802 triangles per patch) and the constraint metrics.
-echo "model,mesh,triangles,primitives,memory_bytes,convert_seconds,vertex_position_error,vertex_normal_error_deg,c0_gap,c1_angle_deg,crack_rate,truth_distance" \
+echo "model,mesh,triangles,primitives,memory_bytes,convert_seconds,vertex_position_error,vertex_normal_error_deg,vertex_normal_flip_rate,c0_gap,c1_angle_deg,crack_rate,truth_distance" \
   > docs/results/primitives.csv
 for s in $table_shapes; do
   "$quadtri" analyze "$s" --tessellation thesis --lines 200 --csv | tail -n +2 >> docs/results/primitives.csv
 done
-"$quadtri" analyze icosahedron --csv > docs/results/icosahedron_metrics.csv
+"$quadtri" analyze icosahedron --csv --heatmaps "$work/heat-icosahedron" --heatmap-width 800 \
+  > docs/results/icosahedron_metrics.csv 2>/dev/null
+"$quadtri" analyze data/teapot.obj --normals average --csv --model quadric-implicit \
+  --heatmaps "$work/heat-teapot" --heatmap-width 640 > /dev/null 2>&1
 "$quadtri" analyze data/teapot.obj --normals average --csv > docs/results/teapot_metrics.csv
+for f in residual normal-misfit; do
+  cp "$work/heat-icosahedron/quadric-implicit-$f.png" "docs/images/fig5_6_icosahedron-$f.png"
+  cp "$work/heat-teapot/quadric-implicit-$f.png" "docs/images/fig6_2_teapot-$f.png"
+done
+[ -x scripts/measure-models.sh ] && scripts/measure-models.sh
 
 # Markdown helpers over the CSVs (awk, no other tools).
 pivot() {  # CSV, value column, scale, format -> rows = models, columns = shapes
@@ -79,17 +100,35 @@ pivot() {  # CSV, value column, scale, format -> rows = models, columns = shapes
       }
     }' "$1"
 }
-ratio_to_shading() {  # CSV -> time / shading time per model and shape
-  awk -F, -v models="$models" -v shapes="$shapes" '
+# awk: ratio(NUM, DEN) of two ';'-separated lists of per-round times is the median of the
+# per-round ratios, and sets LO and HI to their range (the ratio of the medians without rounds).
+ratio_awk='
+  function ratio(num, den,   a, b, n, r, i, j, t, k) {
+    n = split(num, a, ";")
+    if (n != split(den, b, ";")) { n = 1; a[1] = median(num); b[1] = median(den) }
+    for (i = 1; i <= n; i++) r[i] = b[i] > 0 ? a[i] / b[i] : 0
+    for (i = 2; i <= n; i++) for (j = i; j > 1 && r[j - 1] > r[j]; j--) { t = r[j]; r[j] = r[j - 1]; r[j - 1] = t }
+    LO = r[1]; HI = r[n]; k = int((n + 1) / 2)
+    return n % 2 ? r[k] : (r[k] + r[k + 1]) / 2
+  }
+  function median(list,   a, n, i, j, t, k) {
+    n = split(list, a, ";")
+    for (i = 2; i <= n; i++) for (j = i; j > 1 && a[j - 1] > a[j]; j--) { t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+    k = int((n + 1) / 2); return n % 2 ? a[k] : (a[k] + a[k + 1]) / 2
+  }'
+ratio_to_shading() {  # CSV -> time / shading time per model and shape, per round
+  awk -F, -v models="$models" -v shapes="$shapes" "$ratio_awk"'
     NR == 1 { for (i = 1; i <= NF; i++) idx[$i] = i; next }
-    { v[$(idx["model"]) "," $(idx["shape"])] = $(idx["render_s"]) }
+    { v[$(idx["model"]) "," $(idx["shape"])] = $(idx["render_times_s"]) }
     END {
       ns = split(shapes, s, ","); nm = split(models, m, ",")
       printf "| model |"; for (j = 1; j <= ns; j++) printf " %s |", s[j]; printf "\n|---|"
       for (j = 1; j <= ns; j++) printf "---:|"; printf "\n"
-      for (i = 1; i <= nm; i++) {
+      for (i = 2; i <= nm; i++) {
         printf "| %s |", m[i]
-        for (j = 1; j <= ns; j++) printf " %.2f |", v[m[i] "," s[j]] / v["shading," s[j]]
+        for (j = 1; j <= ns; j++) {
+          r = ratio(v[m[i] "," s[j]], v["shading," s[j]]); printf " %.2f (%.2f-%.2f) |", r, LO, HI
+        }
         printf "\n"
       }
     }' "$1"
@@ -122,18 +161,53 @@ metrics_table() {  # CSV -> the constraint metrics of every model
       printf "\n" }' "$1"
 }
 scaling_table() {
-  awk -F, '
+  awk -F, "$ratio_awk"'
     NR == 1 { for (i = 1; i <= NF; i++) idx[$i] = i; next }
     { t[$(idx["shape"]) "," $(idx["model"])] = $(idx["render_s"])
+      r[$(idx["shape"]) "," $(idx["model"])] = $(idx["render_times_s"])
       if ($(idx["model"]) == "quadric-implicit") { n[++k] = $(idx["shape"]); p[$(idx["shape"])] = $(idx["primitives"]) } }
     END {
       print "| mesh | patches | shading (s) | quadric-param (s) | quadric-implicit (s) | implicit / shading | implicit / param |"
       print "|---|---:|---:|---:|---:|---:|---:|"
       for (i = 1; i <= k; i++) { s = n[i]
-        printf "| %s | %d | %.3f | %.3f | %.3f | %.2f | %.2f |\n", s, p[s], t[s ",shading"],
-          t[s ",quadric-param"], t[s ",quadric-implicit"], t[s ",quadric-implicit"] / t[s ",shading"],
-          t[s ",quadric-implicit"] / t[s ",quadric-param"] }
+        a = ratio(r[s ",quadric-implicit"], r[s ",shading"]); alo = LO; ahi = HI
+        b = ratio(r[s ",quadric-implicit"], r[s ",quadric-param"])
+        printf "| %s | %d | %.3f | %.3f | %.3f | %.2f (%.2f-%.2f) | %.2f (%.2f-%.2f) |\n", s, p[s],
+          t[s ",shading"], t[s ",quadric-param"], t[s ",quadric-implicit"], a, alo, ahi, b, LO, HI }
     }' docs/results/times_scaling.csv
+}
+targets_table() {  # issue 4's speed and memory targets, measured
+  echo "| target | measured: median (range over rounds) | result |"
+  echo "|---|---|---|"
+  for setup in a b; do
+    awk -F, -v setup="$setup" -v shapes="$shapes" "$ratio_awk"'
+      NR == 1 { for (i = 1; i <= NF; i++) idx[$i] = i; next }
+      { v[$(idx["model"]) "," $(idx["shape"])] = $(idx["render_times_s"]) }
+      END { ns = split(shapes, s, ",")
+        for (j = 1; j <= ns; j++) { x = ratio(v["quadric-implicit," s[j]], v["shading," s[j]])
+          printf "| quadric-implicit / shading render time <= 1.5, setup (%s), %s | %.2f (%.2f-%.2f) | %s |\n",
+            setup, s[j], x, LO, HI, (x <= 1.5 ? "pass" : "FAIL") } }' "docs/results/times_$setup.csv"
+  done
+  awk -F, "$ratio_awk"'
+    NR == 1 { for (i = 1; i <= NF; i++) idx[$i] = i; next }
+    { r[$(idx["shape"]) "," $(idx["model"])] = $(idx["render_times_s"])
+      if ($(idx["model"]) == "quadric-implicit") { n[++k] = $(idx["shape"]); p[$(idx["shape"])] = $(idx["primitives"]) } }
+    END { first = ratio(r[n[1] ",quadric-implicit"], r[n[1] ",shading"])
+      for (i = 2; i <= k; i++) if (p[n[i]] >= 100000) {
+        x = ratio(r[n[i] ",quadric-implicit"], r[n[i] ",shading"])
+        printf "| flat scaling: implicit / shading at %d patches <= 1.2 x that at %d patches | %.2f / %.2f = %.2f | %s |\n",
+          p[n[i]], p[n[1]], x, first, x / first, (x / first <= 1.2 ? "pass" : "FAIL")
+        printf "| quadric-implicit / shading render time <= 1.5, also in the scaling scene (not a thesis scene), %d patches | %.2f (%.2f-%.2f) | %s |\n",
+          p[n[i]], x, LO, HI, (x <= 1.5 ? "pass" : "FAIL") }
+      if (p[n[k]] < 100000) printf "| flat scaling up to 100,000+ patches | largest icosphere has %d patches | FAIL |\n", p[n[k]] }' \
+    docs/results/times_scaling.csv
+  awk -F, '
+    NR == 1 { for (i = 1; i <= NF; i++) idx[$i] = i; next }
+    { b[$1 "," $(idx["mesh"])] = $(idx["memory_bytes"]); if (!($(idx["mesh"]) in seen)) { seen[$(idx["mesh"])] = 1; o[++n] = $(idx["mesh"]) } }
+    END { for (j = 1; j <= n; j++) { x = b["quadric-param," o[j]] / b["quadric-implicit," o[j]]
+      printf "| quadric-implicit geometry >= 100x smaller than the 4802-triangle tessellation (quadric-param), %s | %.0fx (%.1f KiB against %.1f KiB) | %s |\n",
+        o[j], x, b["quadric-implicit," o[j]] / 1024, b["quadric-param," o[j]] / 1024, (x >= 100 ? "pass" : "FAIL") } }' \
+    docs/results/primitives.csv
 }
 
 cpu=$(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || echo unknown)
@@ -143,7 +217,8 @@ cpu=$(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || 
 
 Generated by \`scripts/reproduce.sh --$mode\` on $(date -u +%Y-%m-%d) at commit
 \`$(git rev-parse --short HEAD 2>/dev/null || echo unknown)\`, on $(nproc) cores of a
-$cpu (a machine shared with other jobs, so times carry noise of some 10-20 %).
+$cpu (a machine shared with other jobs: single renders scatter by tens of percent, so every
+ratio below is the median of side-by-side ratios over several rounds, with their range).
 The CSVs behind every table are in [results/](results/). The thesis' numbers come from its
 chapter 5 (Mitsuba 0.5 on an i5 4690k, 64 spp and 500 spp at its own, unstated resolution);
 only ratios between models can be compared, not absolute times.
@@ -178,7 +253,8 @@ acceleration structure's build is in build_s of the CSV):
 
 $(pivot docs/results/times_a.csv render_s 1 %.2f)
 
-Ratio to \`shading\`, quadtri:
+Ratio to \`shading\`, quadtri: the median over the rounds of the ratio of renders done side by
+side, and its range over the rounds:
 
 $(ratio_to_shading docs/results/times_a.csv)
 
@@ -201,7 +277,7 @@ Mean samples per pixel the adaptive integrator took:
 
 $(pivot docs/results/times_b.csv spp 1 %.1f)
 
-Ratio to \`shading\`, quadtri:
+Ratio to \`shading\`, quadtri (median over rounds, and range):
 
 $(ratio_to_shading docs/results/times_b.csv)
 
@@ -219,12 +295,49 @@ Thesis, hours, and ratio to shading:
 ![figure 5.5](images/fig5_5_ratio.png)
 
 \`quadtri figure --setup scaling --shapes icosphere-0..$levels --models shading,quadric-param,quadric-implicit ${scaling[*]} --ratio-plot ...\`
-(quadric-param tessellated at the scene default, lattice level 8 = 64 triangles per patch):
+(quadric-param tessellated at the scene default, lattice level 8 = 64 triangles per patch;
+times are medians of the rounds, ratios the median of per-round ratios, range in brackets):
 
 $(scaling_table)
 
 The thesis' figure 5.5 has two points per setup: quadric-param (4802 triangles per patch) /
 quadric-implicit fell from 1.444 with one patch to 0.678 with 20 patches.
+
+## Speed and memory targets (issue 4)
+
+Render-time ratios are side by side (same round), medians over the rounds; memory from table 5.1.
+
+$(targets_table)
+
+## Figures 5.3 and 5.4: the parametric models at corners-only and 2500-point tessellations
+
+\`quadtri analyze SHAPE --heatmaps DIR\` (\`MODEL-view-corners.png\`, \`MODEL-view-2500.png\`):
+normal as colour (each component mapped from its range over the model, thesis §5.2), patch
+boundaries and silhouette in black. With the 3 corner points per patch (figure 5.3) the
+tessellation is the input mesh (constraints 1 and 2); with the thesis' 50x50 = 2500 points
+(figure 5.4) the patches bulge and meet without gaps (constraint 3), the normal is continuous at
+the vertices but kinks across the edges (constraint 4 holds at the vertices only).
+
+| | tetrahedron, quadric-edges | tetrahedron, quadric-param | icosahedron, quadric-edges | icosahedron, quadric-param |
+|---|---|---|---|---|
+| corners only (5.3) | ![](images/fig5_3_4_tetrahedron-quadric-edges-corners.png) | ![](images/fig5_3_4_tetrahedron-quadric-param-corners.png) | ![](images/fig5_3_4_icosahedron-quadric-edges-corners.png) | ![](images/fig5_3_4_icosahedron-quadric-param-corners.png) |
+| 2500 points (5.4) | ![](images/fig5_3_4_tetrahedron-quadric-edges-2500.png) | ![](images/fig5_3_4_tetrahedron-quadric-param-2500.png) | ![](images/fig5_3_4_icosahedron-quadric-edges-2500.png) | ![](images/fig5_3_4_icosahedron-quadric-param-2500.png) |
+
+## Figures 5.6 and 6.2: the implicit model against its parametric patch
+
+Per patch (patches laid out in cells, corner 0 bottom left), (f_i o f_p)(u, v) / |grad f_i|
+divided by the mean edge length, and |n_p x n_i|, for \`quadric-implicit\`
+(\`quadtri analyze icosahedron --heatmaps DIR\`, \`quadtri analyze data/teapot.obj --normals average --model quadric-implicit --heatmaps DIR\`).
+
+Figure 5.6, icosahedron:
+
+![figure 5.6a](images/fig5_6_icosahedron-residual.png)
+![figure 5.6b](images/fig5_6_icosahedron-normal-misfit.png)
+
+Figure 6.2, teapot:
+
+![figure 6.2a](images/fig6_2_teapot-residual.png)
+![figure 6.2b](images/fig6_2_teapot-normal-misfit.png)
 
 ## Constraint metrics (icosahedron, \`quadtri analyze icosahedron --csv\`)
 
@@ -235,6 +348,7 @@ $(metrics_table docs/results/icosahedron_metrics.csv)
 $(metrics_table docs/results/teapot_metrics.csv)
 
 HEAD
+  [ -f docs/results/models.md ] && { cat docs/results/models.md; echo; }
   cat docs/results-discussion.md
 } > docs/RESULTS.md.tmp
 mv docs/RESULTS.md.tmp docs/RESULTS.md

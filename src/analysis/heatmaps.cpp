@@ -31,9 +31,9 @@ std::shared_ptr<ImplicitPair> implicitPair(const SurfaceModel& model) {
 
 }  // namespace
 
-PatchLayout::PatchLayout(size_t patchCount) : patches(patchCount) {
+PatchLayout::PatchLayout(size_t patchCount, int width) : patches(patchCount) {
   columns = std::max(1, int(std::ceil(std::sqrt(double(std::max<size_t>(patchCount, 1))))));
-  cell = std::clamp(1200 / columns, 24, 200);
+  cell = std::clamp(width / columns, 12, 200);
 }
 
 int PatchLayout::width() const {
@@ -155,9 +155,9 @@ Canvas drawNormalMap(const PatchLayout& layout, const SurfaceModel& model,
 
 std::vector<std::filesystem::path> writeHeatmaps(const SurfaceModel& model,
                                                  const std::filesystem::path& dir,
-                                                 const std::string& meshLabel) {
+                                                 const std::string& meshLabel, int width) {
   std::filesystem::create_directories(dir);
-  const PatchLayout layout(model.patchCount());
+  const PatchLayout layout(model.patchCount(), width);
   const std::string name(model.name());
   std::vector<std::filesystem::path> written;
   auto save = [&](const Canvas& canvas, const std::string& suffix) {

@@ -22,7 +22,8 @@ struct PatchLayout {
   size_t patches = 0;
   int columns = 1, cell = 64, left = 8, top = 48;
 
-  explicit PatchLayout(size_t patchCount);
+  /// Square cells of width / columns pixels (12 to 200) for about `width` pixels of patches.
+  explicit PatchLayout(size_t patchCount, int width = 1200);
   int width() const;
   int height() const;
   /// Pixel centre of (t, u, v).
@@ -47,10 +48,10 @@ Canvas drawNormalMap(const PatchLayout& layout, const SurfaceModel& model,
                      const std::string& title);
 
 /// Writes MODEL-normals.png for every model and, for models with quadric patches,
-/// MODEL-residual.png and MODEL-normal-misfit.png into `dir` (created if missing). Returns the
-/// paths written.
+/// MODEL-residual.png and MODEL-normal-misfit.png into `dir` (created if missing), laid out
+/// about `width` pixels wide. Returns the paths written.
 std::vector<std::filesystem::path> writeHeatmaps(const SurfaceModel& model,
                                                  const std::filesystem::path& dir,
-                                                 const std::string& meshLabel);
+                                                 const std::string& meshLabel, int width = 1200);
 
 }  // namespace quadtri

@@ -67,6 +67,21 @@ double vertexNormalErrorDeg(const SurfaceModel& model) {
   });
 }
 
+double vertexNormalFlipRate(const SurfaceModel& model) {
+  if (model.patchCount() == 0) return 0.0;
+  const size_t flips = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, model.patchCount()), size_t(0),
+      [&](const tbb::blocked_range<size_t>& range, size_t count) {
+        for (size_t t = range.begin(); t != range.end(); ++t)
+          for (int k = 0; k < 3; ++k)
+            count += evaluateChecked(model, t, kCornerUv[k])
+                         .normal.dot(model.mesh().cornerNormal(t, k)) < 0.0;
+        return count;
+      },
+      [](size_t a, size_t b) { return a + b; });
+  return double(flips) / double(3 * model.patchCount());
+}
+
 std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
                                              const MeshTopology& topology, int samples) {
   if (samples < 2) fail("edge continuity: at least 2 samples per edge are needed, got {}", samples);
@@ -136,6 +151,7 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
   m.memoryBytes = geometry.bytes();
   m.vertexPositionError = vertexPositionError(model);
   m.vertexNormalErrorDeg = vertexNormalErrorDeg(model);
+  m.vertexNormalFlipRate = vertexNormalFlipRate(model);
   const MeshTopology topology(model.mesh());
   if (const std::optional<EdgeContinuity> c =
           edgeContinuity(model, topology, options.edgeSamples)) {
@@ -160,6 +176,7 @@ nlohmann::ordered_json toJson(const ModelMetrics& m) {
       {"convert_seconds", m.convertSeconds},
       {"vertex_position_error", m.vertexPositionError},
       {"vertex_normal_error_deg", m.vertexNormalErrorDeg},
+      {"vertex_normal_flip_rate", m.vertexNormalFlipRate},
       {"c0_gap", nullable(m.c0Gap)},
       {"c1_angle_deg", nullable(m.c1AngleDeg)},
       {"crack_rate", nullable(m.crackRate)},
@@ -175,6 +192,7 @@ std::string metricsTable(const std::vector<ModelMetrics>& rows) {
                                          "convert_seconds",
                                          "vertex_position_error",
                                          "vertex_normal_error_deg",
+                                         "vertex_normal_flip_rate",
                                          "c0_gap",
                                          "c1_angle_deg",
                                          "crack_rate",

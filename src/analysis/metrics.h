@@ -23,6 +23,12 @@ double vertexPositionError(const SurfaceModel& model);
 /// and the corner's shading normal (constraint 2).
 double vertexNormalErrorDeg(const SurfaceModel& model);
 
+/// The share of patch corners whose normal points away from the corner's shading normal
+/// (n·n_k < 0): where a patch meets the tangent plane of constraint 2 but folds back over it,
+/// e.g. a quadratic edge whose end tangents must reverse because the normals lean the same way
+/// along it (an inflection), or a shading normal more than 90° from its own face's normal.
+double vertexNormalFlipRate(const SurfaceModel& model);
+
 /// Continuity across shared edges (constraints 3 and 4).
 struct EdgeContinuity {
   double c0Gap = 0;       ///< max |P_a(s) − P_b(s)| / mean edge length
@@ -49,6 +55,7 @@ struct ModelMetrics {
   double convertSeconds = 0;
   double vertexPositionError = 0;
   double vertexNormalErrorDeg = 0;
+  double vertexNormalFlipRate = 0;
   std::optional<double> c0Gap, c1AngleDeg, crackRate, truthDistance;
 };
 

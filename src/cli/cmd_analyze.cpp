@@ -6,6 +6,7 @@
 
 #include "analysis/heatmaps.h"
 #include "analysis/metrics.h"
+#include "analysis/tessellation_view.h"
 #include "cli/commands.h"
 #include "math/error.h"
 #include "mesh/mesh_io.h"
@@ -16,6 +17,7 @@ Action addAnalyzeCommand(CLI::App& app) {
   struct Options {
     std::string mesh, model = "all", tessellation = "8", normals = "file", heatmaps;
     bool json = false, csv = false;
+    int heatmapWidth = 1200;
     AnalysisOptions analysis;
   };
   auto opt = std::make_shared<Options>();
@@ -37,9 +39,16 @@ Action addAnalyzeCommand(CLI::App& app) {
       ->check(CLI::IsMember({"file", "average", "angle"}))
       ->capture_default_str();
   sub->add_option("--heatmaps", opt->heatmaps,
-                  "Folder for per-patch PNG heatmaps: normal as colour, and for implicit models "
-                  "(f_i o f_p)(u,v) and |n_p x n_i| (thesis figs. 5.3-5.6)");
+                  "Folder for PNGs: per-patch heatmaps of the normal as colour and, for implicit "
+                  "models, (f_i o f_p)(u,v) and |n_p x n_i| (thesis figs. 5.6, 6.2); and 3D views "
+                  "of the corners-only and the 2500-point tessellation, normal as colour, patch "
+                  "boundaries in black (figs. 5.3, 5.4)");
+  sub->add_option("--heatmap-width", opt->heatmapWidth,
+                  "About how many pixels wide the per-patch heatmaps are")
+      ->capture_default_str();
   return [opt]() {
+    if (opt->heatmapWidth < 100 || opt->heatmapWidth > 10000)
+      fail("--heatmap-width {}: expected 100 to 10000 pixels", opt->heatmapWidth);
     opt->analysis.tessellation = Tessellation::parse(opt->tessellation);
     if (opt->analysis.crack.lines == 0) fail("--lines: expected a positive number of lines");
     BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals));
@@ -53,9 +62,13 @@ Action addAnalyzeCommand(CLI::App& app) {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       rows.push_back(analyzeModel(*model, opt->mesh, input.truth, seconds, opt->analysis));
-      if (!opt->heatmaps.empty())
-        for (const auto& path : writeHeatmaps(*model, opt->heatmaps, input.description))
+      if (!opt->heatmaps.empty()) {
+        for (const auto& path :
+             writeHeatmaps(*model, opt->heatmaps, input.description, opt->heatmapWidth))
           fmt::print(stderr, "wrote {}\n", path.string());
+        for (const auto& path : writeTessellationViews(*model, opt->heatmaps))
+          fmt::print(stderr, "wrote {}\n", path.string());
+      }
     }
     if (opt->csv) {
       // The JSON keys in their order are the columns, so the CSV and JSON always agree.

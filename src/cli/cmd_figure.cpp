@@ -2,6 +2,7 @@
 // of a setup and composes the labelled grid of the thesis' figures 5.1 / 5.2.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -30,7 +31,7 @@ Action addFigureCommand(CLI::App& app) {
                 models = "shading,quadric-edges,quadric-param,quadric-implicit",
                 scenes = "scenes/thesis", output, csv, ratioPlot;
     std::vector<std::string> defines;
-    int spp = 0, res = 0, threads = 0;
+    int spp = 0, res = 0, threads = 0, repeats = 1;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -54,6 +55,10 @@ Action addFigureCommand(CLI::App& app) {
   sub->add_option("--res", opt->res, "Image side in pixels (sets $res)");
   sub->add_option("-D", opt->defines, "Scene parameter name=value (overrides <default>)");
   sub->add_option("--threads", opt->threads, "Worker threads (0: all)")->capture_default_str();
+  sub->add_option("--repeat", opt->repeats,
+                  "Renders per cell, in rounds that rotate the models' order; the CSV and the "
+                  "ratio plot take the median")
+      ->capture_default_str();
   return [opt]() {
     FigureRequest request;
     request.shapes = splitList(opt->shapes);
@@ -66,6 +71,7 @@ Action addFigureCommand(CLI::App& app) {
         fail("--models: '{}' is not a model", m);
     if (opt->spp < 0 || opt->res < 0 || opt->threads < 0)
       fail("--spp, --res and --threads expect positive numbers");
+    if (opt->repeats < 1) fail("--repeat {}: expected at least 1", opt->repeats);
     if (std::filesystem::path(opt->output).extension() != ".png")
       fail("-o {}: expected a .png file", opt->output);
     for (const std::string& d : opt->defines) {
@@ -79,6 +85,7 @@ Action addFigureCommand(CLI::App& app) {
     }
     if (opt->res > 0) request.defines["res"] = std::to_string(opt->res);
     request.threads = opt->threads;
+    request.repeats = opt->repeats;
     const std::filesystem::path folder = opt->scenes;
     const std::string setup = opt->setup;
     request.sceneFor = [folder, setup](const std::string& shape) {
@@ -90,9 +97,12 @@ Action addFigureCommand(CLI::App& app) {
            shared.string(), setup, shape);
     };
     request.onCell = [](const FigureCell& c) {
-      fmt::print("{:<12} {:<18} render {:8.3f} s  build {:6.3f} s  {:5.1f} spp  {} primitives\n",
-                 c.shape, c.model, c.renderSeconds, c.buildSeconds, c.meanSamplesPerPixel,
-                 c.primitives);
+      const auto [lo, hi] = std::minmax_element(c.renderTimes.begin(), c.renderTimes.end());
+      fmt::print(
+          "{:<12} {:<18} render {:8.3f} s ({:.3f}-{:.3f}, {} runs)  build {:6.3f} s  {:5.1f} spp  "
+          "{} primitives\n",
+          c.shape, c.model, c.renderSeconds, *lo, *hi, c.renderTimes.size(), c.buildSeconds,
+          c.meanSamplesPerPixel, c.primitives);
       std::fflush(stdout);
     };
 

@@ -61,41 +61,82 @@ Canvas composeGrid(const std::vector<std::string>& rowLabels,
 
 std::vector<FigureCell> renderFigureCells(const FigureRequest& request) {
   if (!request.sceneFor) fail("figure: no scene for the shapes");
+  if (request.repeats < 1) fail("figure: at least one render per cell, got {}", request.repeats);
+  using Clock = std::chrono::steady_clock;
   std::vector<FigureCell> cells;
   for (const std::string& shape : request.shapes) {
     const std::filesystem::path file = request.sceneFor(shape);
+    const size_t first = cells.size(), n = request.models.size();
+    std::vector<BuiltScene> built;
     for (const std::string& model : request.models) {
-      using Clock = std::chrono::steady_clock;
       const auto start = Clock::now();
       SceneDefines defines = request.defines;
       defines["model"] = model;
       defines["shape"] = shape;
-      BuiltScene built = buildScene(loadSceneDescription(file, defines), model);
-      FigureCell cell{shape, model, {}, 0, 0, 0, 0, 0};
+      built.push_back(buildScene(loadSceneDescription(file, defines), model));
+      FigureCell cell{shape, model, {}, 0, 0, {}, 0, 0, 0};
       cell.buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
-      RenderOptions options = built.options;
-      if (request.samplesPerPixel) options.samplesPerPixel = *request.samplesPerPixel;
-      options.threads = request.threads;
-      RenderResult result = render(*built.scene, *built.integrator, options);
-      cell.image = std::move(result.image);
-      cell.renderSeconds = result.stats.seconds;
-      cell.meanSamplesPerPixel = result.stats.meanSamplesPerPixel();
-      cell.primitives = built.scene->primitiveCount();
-      cell.geometryBytes = built.scene->geometryBytes();
-      if (request.onCell) request.onCell(cell);
+      cell.primitives = built.back().scene->primitiveCount();
+      cell.geometryBytes = built.back().scene->geometryBytes();
       cells.push_back(std::move(cell));
+    }
+    for (int round = 0; round < request.repeats; ++round)
+      for (size_t k = 0; k < n; ++k) {
+        const size_t i = (k + size_t(round)) % n;
+        RenderOptions options = built[i].options;
+        if (request.samplesPerPixel) options.samplesPerPixel = *request.samplesPerPixel;
+        options.threads = request.threads;
+        RenderResult result = render(*built[i].scene, *built[i].integrator, options);
+        FigureCell& cell = cells[first + i];
+        cell.renderTimes.push_back(result.stats.seconds);
+        if (round == 0) {
+          cell.image = std::move(result.image);
+          cell.meanSamplesPerPixel = result.stats.meanSamplesPerPixel();
+        }
+      }
+    for (size_t i = 0; i < n; ++i) {
+      FigureCell& cell = cells[first + i];
+      cell.renderSeconds = median(cell.renderTimes);
+      if (request.onCell) request.onCell(cell);
     }
   }
   return cells;
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t m = values.size() / 2;
+  return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
+}
+
+double renderTimeRatio(const FigureCell& num, const FigureCell& den) {
+  if (!num.renderTimes.empty() && num.renderTimes.size() == den.renderTimes.size()) {
+    std::vector<double> ratios;
+    for (size_t r = 0; r < num.renderTimes.size(); ++r) {
+      if (!(den.renderTimes[r] > 0)) return 0.0;
+      ratios.push_back(num.renderTimes[r] / den.renderTimes[r]);
+    }
+    return median(std::move(ratios));
+  }
+  return den.renderSeconds > 0 ? num.renderSeconds / den.renderSeconds : 0.0;
+}
+
 std::string figureCsv(const std::string& setup, const std::vector<FigureCell>& cells) {
   std::string csv =
-      "setup,shape,model,width,height,spp,primitives,geometry_bytes,build_s,render_s\n";
-  for (const FigureCell& c : cells)
-    csv += fmt::format("{},{},{},{},{},{:.1f},{},{},{:.4f},{:.4f}\n", setup, c.shape, c.model,
-                       c.image.width, c.image.height, c.meanSamplesPerPixel, c.primitives,
-                       c.geometryBytes, c.buildSeconds, c.renderSeconds);
+      "setup,shape,model,width,height,spp,primitives,geometry_bytes,build_s,render_s,"
+      "render_min_s,render_max_s,render_times_s\n";
+  for (const FigureCell& c : cells) {
+    std::vector<double> times = c.renderTimes;
+    if (times.empty()) times.push_back(c.renderSeconds);
+    std::string all;
+    for (double t : times) all += fmt::format("{}{:.4f}", all.empty() ? "" : ";", t);
+    csv += fmt::format("{},{},{},{},{},{:.1f},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{}\n", setup,
+                       c.shape, c.model, c.image.width, c.image.height, c.meanSamplesPerPixel,
+                       c.primitives, c.geometryBytes, c.buildSeconds, c.renderSeconds,
+                       *std::min_element(times.begin(), times.end()),
+                       *std::max_element(times.begin(), times.end()), all);
+  }
   return csv;
 }
 
@@ -106,8 +147,10 @@ std::vector<std::pair<double, double>> renderTimeRatios(const std::vector<Figure
   for (const FigureCell& num : cells) {
     if (num.model != numerator) continue;
     for (const FigureCell& den : cells)
-      if (den.shape == num.shape && den.model == denominator && den.renderSeconds > 0)
-        points.emplace_back(double(num.primitives), num.renderSeconds / den.renderSeconds);
+      if (den.shape == num.shape && den.model == denominator) {
+        const double ratio = renderTimeRatio(num, den);
+        if (ratio > 0) points.emplace_back(double(num.primitives), ratio);
+      }
   }
   std::sort(points.begin(), points.end());
   return points;

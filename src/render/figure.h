@@ -46,7 +46,9 @@ struct FigureCell {
   std::string shape, model;
   Image image;
   double buildSeconds = 0;   ///< loading, model conversion and acceleration structure
-  double renderSeconds = 0;  ///< the renderer's wall time
+  double renderSeconds = 0;  ///< the renderer's wall time: the median of renderTimes
+  /// The wall time of every render of this cell, in round order (FigureRequest::repeats).
+  std::vector<double> renderTimes;
   double meanSamplesPerPixel = 0;
   size_t primitives = 0;  ///< of the whole scene (room included)
   size_t geometryBytes = 0;
@@ -60,20 +62,34 @@ struct FigureRequest {
   SceneDefines defines;
   std::optional<int> samplesPerPixel;  ///< overrides the scene's sampler when set
   int threads = 0;                     ///< 0: every hardware thread
+  /// Renders per cell. A shape's models are built together and rendered in rounds, each round
+  /// rendering every model once in an order rotated by one per round, so that a drift of the
+  /// machine's load hits every model alike.
+  int repeats = 1;
   /// Called after each cell, e.g. to report progress.
   std::function<void(const FigureCell&)> onCell;
 };
 
 /// Renders every (shape, model) cell, row-major (shapes outer). `defines["model"]` and
 /// `defines["shape"]` are set to the cell's model and shape, so one scene may serve every shape.
+/// The image of a cell is that of its first render.
 std::vector<FigureCell> renderFigureCells(const FigureRequest& request);
 
+/// The median of `values` (the mean of the middle two for an even count); 0 when empty.
+double median(std::vector<double> values);
+
+/// The render-time ratio num / den of two cells rendered side by side: the median over rounds
+/// of num.renderTimes[r] / den.renderTimes[r] when both have the same rounds, else
+/// num.renderSeconds / den.renderSeconds. 0 when a denominator time is not positive.
+double renderTimeRatio(const FigureCell& num, const FigureCell& den);
+
 /// CSV of the cells' costs: setup,shape,model,width,height,spp,primitives,geometry_bytes,
-/// build_s,render_s.
+/// build_s,render_s,render_min_s,render_max_s,render_times_s (render_s the median; the last
+/// column lists every round's time, separated by ';').
 std::string figureCsv(const std::string& setup, const std::vector<FigureCell>& cells);
 
-/// The thesis' figure 5.5 extended: the points (patches, renderSeconds(numerator) /
-/// renderSeconds(denominator)) over the shapes, sorted by patches, where patches is the
+/// The thesis' figure 5.5 extended: the points (patches, renderTimeRatio(numerator,
+/// denominator)) over the shapes, sorted by patches, where patches is the
 /// numerator cell's primitive count (the scaling scene holds nothing else). Shapes missing
 /// either cell are skipped.
 std::vector<std::pair<double, double>> renderTimeRatios(const std::vector<FigureCell>& cells,

@@ -58,6 +58,10 @@ TEST(Heatmaps, LayoutMapsPixelsBackToTheirPatch) {
     EXPECT_NEAR(std::get<2>(*at), 0.4, pixelInUv);
   }
   EXPECT_FALSE(layout.patchAt(0, 0));
+  // The teapot's 992 patches in 32 columns: 640 / 32 = 20-pixel cells, floored at 12.
+  EXPECT_EQ(PatchLayout(992, 640).cell, 20);
+  EXPECT_EQ(PatchLayout(992, 100).cell, 12);
+  EXPECT_EQ(PatchLayout(20).cell, 200);
 }
 
 TEST(Heatmaps, NormalMapColoursEachFaceByItsNormalRange) {

@@ -71,6 +71,31 @@ TEST(Metrics, ShadingOffsetMeasuresExactlyAsShading) {
   EXPECT_EQ(*b.crackRate, 0.0);
 }
 
+TEST(Metrics, AnInflectionEdgeFoldsTheQuadraticPatchOverItsCorner) {
+  // Two triangles of the plane z = 0 whose normals lean towards -x, by 0.1 at x = 0 and by 0.5
+  // at x = 1. Along the x edges both tangent planes lean the same way (an inflection), so they
+  // meet at x = 1.25, beyond the edge: the quadratic edge with those end tangents overshoots
+  // x = 1 and turns back, and the patch's normal at such a corner is the exact opposite of the
+  // vertex normal although its tangent plane is the vertex's.
+  TriangleMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)};
+  mesh.triangles = {{0, 1, 3}, {0, 3, 2}};
+  mesh.normals = {Vec3(-0.1, 0, 1).normalized(), Vec3(-0.5, 0, 1).normalized(),
+                  Vec3(-0.1, 0, 1).normalized(), Vec3(-0.5, 0, 1).normalized()};
+  mesh.normalIndices = mesh.triangles;
+  const auto shared = std::make_shared<const TriangleMesh>(std::move(mesh));
+  const std::unique_ptr<SurfaceModel> param = makeModel("quadric-param", shared);
+  const double rate = vertexNormalFlipRate(*param);
+  EXPECT_GT(rate, 0.0);
+  EXPECT_LT(rate, 1.0);
+  EXPECT_NEAR(vertexNormalErrorDeg(*param), 180.0, 1e-6);
+  // Interpolated shading normals never fold.
+  EXPECT_EQ(vertexNormalFlipRate(*makeModel("shading", shared)), 0.0);
+  // On the icosahedron's convex corners nothing folds.
+  const auto ico = std::make_shared<const TriangleMesh>(makeBuiltin("icosahedron").mesh);
+  EXPECT_EQ(vertexNormalFlipRate(*makeModel("quadric-param", ico)), 0.0);
+}
+
 TEST(Metrics, EdgeSamplesMatchAcrossOppositeTraversals) {
   // Linear patches of a welded mesh agree along every shared edge only if each side maps the
   // edge parameter in its own direction; mixed windings exercise both mappings.
@@ -201,6 +226,7 @@ TEST(Metrics, JsonAndTableCarryEveryKey) {
                                          "convert_seconds",
                                          "vertex_position_error",
                                          "vertex_normal_error_deg",
+                                         "vertex_normal_flip_rate",
                                          "c0_gap",
                                          "c1_angle_deg",
                                          "crack_rate",

@@ -122,9 +122,53 @@ TEST(FigureCells, EachCellComesFromItsShapesSceneWithTheDefines) {
     for (const Color& c : cells[i].image.pixels) EXPECT_NEAR(c[0], expected[i], 1e-9);
     EXPECT_GE(cells[i].renderSeconds, 0.0);
   }
+  for (const FigureCell& c : cells) EXPECT_EQ(c.renderTimes.size(), 1u);
   const std::string csv = figureCsv("t", cells);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
   EXPECT_NE(csv.find("t,bright,quadric-implicit,6,6,2.0,"), std::string::npos);
+}
+
+TEST(FigureCells, RepeatsRenderEveryCellOncePerRoundAndKeepTheMedian) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("quadtri_repeat_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  writeSkyScene(folder / "t-sky.xml", 0.5);
+  FigureRequest request;
+  request.shapes = {"sky"};
+  request.models = {"shading", "quadric-param", "quadric-implicit"};
+  request.sceneFor = [&](const std::string& shape) { return folder / ("t-" + shape + ".xml"); };
+  request.defines["res"] = "4";
+  request.samplesPerPixel = 1;
+  request.repeats = 4;
+  const std::vector<FigureCell> cells = renderFigureCells(request);
+  std::filesystem::remove_all(folder);
+  ASSERT_EQ(cells.size(), 3u);
+  for (const FigureCell& c : cells) {
+    ASSERT_EQ(c.renderTimes.size(), 4u);
+    EXPECT_DOUBLE_EQ(c.renderSeconds, median(c.renderTimes));
+    EXPECT_EQ(c.image.width, 4);
+  }
+  const std::string csv = figureCsv("t", cells);
+  // render_times_s lists the four rounds, separated by ';'.
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), ';'), 3 * 3);
+  request.repeats = 0;
+  EXPECT_THROW(renderFigureCells(request), Error);
+}
+
+TEST(FigureCells, MedianAndSideBySideRatios) {
+  EXPECT_DOUBLE_EQ(median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_DOUBLE_EQ(median({4.0, 1.0, 2.0, 3.0}), 2.5);
+  EXPECT_DOUBLE_EQ(median({}), 0.0);
+  FigureCell num, den;
+  // Round 2 ran under load for both: its ratio stays 2, and the median of the per-round
+  // ratios (2, 2, 4) is 2 although the median times alone would give 4 / 1.
+  num.renderTimes = {2.0, 8.0, 4.0};
+  den.renderTimes = {1.0, 4.0, 1.0};
+  num.renderSeconds = 4.0;
+  den.renderSeconds = 1.0;
+  EXPECT_DOUBLE_EQ(renderTimeRatio(num, den), 2.0);
+  den.renderTimes = {1.0};  // rounds differ: the ratio of the medians
+  EXPECT_DOUBLE_EQ(renderTimeRatio(num, den), 4.0);
 }
 
 TEST(FigureCells, RenderTimeRatiosPairCellsOfTheSameShape) {
