@@ -32,9 +32,11 @@ shapes=triangle,tetrahedron,icosahedron,teapot
 models=shading,quadric-edges,quadric-param,quadric-implicit
 if [ "$mode" = quick ]; then
   grid_a=(--res 96 --spp 32 --repeat 3); grid_b=(--res 88 -D spp=64 --repeat 3)
+  every_a=(--res 160 --spp 32); every_b=(--res 128 -D spp=64)
   levels=7; scaling=(--res 128 --spp 16 --repeat 5); table_shapes="triangle tetrahedron icosahedron"
 else
   grid_a=(--repeat 3); grid_b=(--repeat 3); levels=7; scaling=(--repeat 5)
+  every_a=(); every_b=()
   table_shapes="triangle tetrahedron icosahedron data/teapot.obj"
 fi
 
@@ -80,6 +82,12 @@ for f in residual normal-misfit; do
   cp "$work/heat-teapot/quadric-implicit-$f.png" "docs/images/fig6_2_teapot-$f.png"
 done
 [ -x scripts/measure-models.sh ] && scripts/measure-models.sh
+# Issue 5: the teapot and the torus under every model, baselines included, setups (a) and (b).
+every_model=flat,shading,shading-offset,quadric-edges,quadric-param,quadric-implicit,quadric-edges-eq42,quadric-implicit-robust,phong,pn,nagata
+"$quadtri" figure --setup a --shapes teapot,torus --models "$every_model" ${every_a[@]+"${every_a[@]}"} \
+  -o docs/images/models_a.png --csv docs/results/models_times_a.csv
+"$quadtri" figure --setup b --shapes teapot,torus --models "$every_model" ${every_b[@]+"${every_b[@]}"} \
+  -o docs/images/models_b.png --csv docs/results/models_times_b.csv
 
 # Markdown helpers over the CSVs (awk, no other tools).
 pivot() {  # CSV, value column, scale, format -> rows = models, columns = shapes
@@ -346,6 +354,14 @@ $(metrics_table docs/results/icosahedron_metrics.csv)
 ## Teapot (\`quadtri analyze data/teapot.obj --normals average --csv\`)
 
 $(metrics_table docs/results/teapot_metrics.csv)
+
+## Every model on the teapot and the torus (issue 5)
+
+Setups (a) and (b) as above (\`quadtri figure --shapes teapot,torus --models all eleven\`),
+the torus a coarse 24×12 one (576 triangles) so that facets, terminators and cracks show.
+
+![every model, setup (a)](images/models_a.png)
+![every model, setup (b)](images/models_b.png)
 
 HEAD
   [ -f docs/results/models.md ] && { cat docs/results/models.md; echo; }

@@ -35,8 +35,13 @@ Canvas composeGrid(const std::vector<std::string>& rowLabels,
   layout.columns = int(columnLabels.size());
   layout.cellWidth = images.front().width;
   layout.cellHeight = images.front().height;
-  // Labels shrink with small cells so that neighbouring column labels do not overlap.
-  layout.labelSize = std::clamp(layout.cellWidth / 10, 9, 16);
+  // Labels shrink with small cells and long names so that neighbouring column labels do not
+  // overlap (DejaVu Sans averages under 0.6 em per character).
+  size_t longest = 1;
+  for (const std::string& label : columnLabels) longest = std::max(longest, label.size());
+  layout.labelSize = std::clamp(
+      std::min(layout.cellWidth / 10, int(double(layout.cellWidth) / (0.6 * double(longest)))), 7,
+      16);
   for (size_t i = 0; i < images.size(); ++i)
     if (images[i].width != layout.cellWidth || images[i].height != layout.cellHeight)
       fail("grid cell {} ({}, {}) is {}x{}, expected {}x{} like the first", i,

@@ -25,7 +25,7 @@ struct GridLayout {
   int rowLabelWidth = 130;  ///< band on the left holding the row labels
   int headerHeight = 30;    ///< band on top holding the column labels
   int gap = 4;              ///< space around and between cells
-  int labelSize = 16;       ///< text size in pixels (composeGrid: cell width / 10 in [9, 16])
+  int labelSize = 16;  ///< text size in pixels (composeGrid: fits the longest column label, 7-16)
 
   int width() const { return rowLabelWidth + columns * cellWidth + (columns + 1) * gap; }
   int height() const { return headerHeight + rows * cellHeight + (rows + 1) * gap; }
