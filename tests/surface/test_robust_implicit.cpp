@@ -108,13 +108,28 @@ struct PartitionCount {
   size_t rays = 0, none = 0, several = 0;
 };
 
+// A ray from 0.3h above a random point of local edge ka of patch ta (edge parameter in
+// [lo, hi]), aimed down its normal within ±0.3 rad: it crosses the surface near the edge.
+std::pair<Vec3, Vec3> rayAcrossEdge(const RobustImplicitModel& model, uint32_t ta, int ka, double h,
+                                    double lo, double hi, Rng& rng) {
+  const Vec2 cornerUv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+  const Vec2 uv = cornerUv[ka] + uniform(rng, lo, hi) * (cornerUv[(ka + 1) % 3] - cornerUv[ka]);
+  const SurfacePoint sp = model.evaluate(ta, uv.x(), uv.y());
+  Vec3 s, t;
+  orthonormalBasis(sp.normal, s, t);
+  const Vec3 origin = sp.position + 0.3 * h * sp.normal + h * uniform(rng, -0.05, 0.05) * s +
+                      h * uniform(rng, -0.05, 0.05) * t;
+  const Vec3 dir =
+      (-sp.normal + uniform(rng, -0.3, 0.3) * s + uniform(rng, -0.3, 0.3) * t).normalized();
+  return {origin, dir};
+}
+
 PartitionCount crossSharedEdges(const RobustImplicitModel& model, int raysPerEdge, Rng& rng) {
   const TriangleMesh& m = model.mesh();
   const MeshTopology topo(m);
   std::vector<std::vector<uint32_t>> around(m.positions.size());
   for (uint32_t t = 0; t < m.triangleCount(); ++t)
     for (uint32_t v : m.triangles[t]) around[v].push_back(t);
-  const Vec2 cornerUv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
   PartitionCount count;
   for (const Edge& edge : topo.edges) {
     if (edge.sides.size() != 2) continue;
@@ -127,15 +142,7 @@ PartitionCount crossSharedEdges(const RobustImplicitModel& model, int raysPerEdg
     nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
     const double h = edgeScale(m, ta);
     for (int r = 0; r < raysPerEdge; ++r) {
-      const Vec2 uv =
-          cornerUv[ka] + uniform(rng, 0.2, 0.8) * (cornerUv[(ka + 1) % 3] - cornerUv[ka]);
-      const SurfacePoint sp = model.evaluate(ta, uv.x(), uv.y());
-      Vec3 s, t;
-      orthonormalBasis(sp.normal, s, t);
-      const Vec3 origin = sp.position + 0.3 * h * sp.normal + h * uniform(rng, -0.05, 0.05) * s +
-                          h * uniform(rng, -0.05, 0.05) * t;
-      const Vec3 dir =
-          (-sp.normal + uniform(rng, -0.3, 0.3) * s + uniform(rng, -0.3, 0.3) * t).normalized();
+      const auto [origin, dir] = rayAcrossEdge(model, ta, ka, h, 0.2, 0.8, rng);
       // Every crossing within 0.6h: the surface is ~0.3h away and curves far less than that.
       int hits = 0;
       for (uint32_t n : nearby) {
@@ -272,21 +279,12 @@ TEST(RobustImplicitModel, TorusRaysAcrossEdgesCrossPatchesAndBridgesOnce) {
   const auto mesh = builtin("torus:1,0.35,24,12");
   const RobustImplicitModel model(mesh);
   const MeshTopology topo(*mesh);
-  const Vec2 cornerUv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
   size_t rays = 0, odd = 0, alternating = 0;
   for (const Edge& edge : topo.edges) {
     const auto [ta, ka] = edge.sides[0];
     const double h = edgeScale(*mesh, ta);
     for (int r = 0; r < 8; ++r) {
-      const Vec2 uv =
-          cornerUv[ka] + uniform(rng, 0.05, 0.95) * (cornerUv[(ka + 1) % 3] - cornerUv[ka]);
-      const SurfacePoint sp = model.evaluate(ta, uv.x(), uv.y());
-      Vec3 s, t;
-      orthonormalBasis(sp.normal, s, t);
-      const Vec3 origin = sp.position + 0.3 * h * sp.normal + h * uniform(rng, -0.05, 0.05) * s +
-                          h * uniform(rng, -0.05, 0.05) * t;
-      const Vec3 dir =
-          (-sp.normal + uniform(rng, -0.3, 0.3) * s + uniform(rng, -0.3, 0.3) * t).normalized();
+      const auto [origin, dir] = rayAcrossEdge(model, ta, ka, h, 0.05, 0.95, rng);
       const auto hits = crossings(model, origin, dir, 0.6 * h);
       ++rays;
       odd += hits.size() % 2 == 1;
