@@ -2,6 +2,7 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -43,11 +44,15 @@ Action addRenderCommand(CLI::App& app) {
   sub->add_option("--model", opt->model, "Model for every obj/ply shape, overriding the scene")
       ->check(CLI::IsMember(modelNames()));
   sub->add_option("-D", opt->defines, "Scene parameter name=value (overrides <default>)");
-  sub->add_option("--spp", opt->spp, "Samples per pixel (overrides the sampler)");
+  CLI::Option* sppOption = sub->add_option(
+      "--spp", opt->spp,
+      "Samples per pixel (overrides the sampler; the cap per pixel of an adaptive integrator)");
   sub->add_option("--threads", opt->threads, "Worker threads (0: all)")->capture_default_str();
-  sub->add_option("--time", opt->timeLimit, "Time budget in seconds; unfinished pixels stay black");
+  CLI::Option* timeOption = sub->add_option("--time", opt->timeLimit,
+                                            "Time budget in seconds; unfinished pixels stay black");
   sub->add_option("--seed", opt->seed, "Sampler seed (overrides the sampler)");
-  return [opt]() {
+  return [opt, sppOption, timeOption]() {
+    const bool sppGiven = sppOption->count() > 0, timeGiven = timeOption->count() > 0;
     SceneDefines defines;
     for (const std::string& d : opt->defines) {
       const size_t eq = d.find('=');
@@ -58,16 +63,35 @@ Action addRenderCommand(CLI::App& app) {
       const std::string ext = std::filesystem::path(out).extension().string();
       if (ext != ".exr" && ext != ".png") fail("output {}: expected a .exr or .png file", out);
     }
-    if (opt->spp < 0) fail("--spp {}: expected a positive count", opt->spp);
+    if (sppGiven && opt->spp <= 0) fail("--spp {}: expected a positive count", opt->spp);
     if (opt->threads < 0) fail("--threads {}: expected 0 (all) or a positive count", opt->threads);
-    if (opt->timeLimit < 0.0)
+    if (timeGiven && !(opt->timeLimit > 0.0))
       fail("--time {}: expected a positive number of seconds", opt->timeLimit);
 
-    const SceneDescription description = loadSceneDescription(opt->scene, defines);
+    SceneDescription description = loadSceneDescription(opt->scene, defines);
+    for (const auto& [name, value] : defines)
+      if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
+          description.defaultNames.end())
+        fmt::print(stderr,
+                   "warning: -D {}={}: {} has no <default name=\"{}\">; the value reaches only "
+                   "a ${} in the file\n",
+                   name, value, opt->scene, name, name);
+    if (sppGiven) {
+      // --spp is the samples per pixel; for the adaptive integrator, its cap per pixel.
+      description.sensor.sampler.sampleCount = opt->spp;
+      IntegratorDesc& integrator = description.integrator;
+      if (integrator.type == IntegratorDesc::Type::Adaptive) {
+        if (opt->spp < 2)
+          fail("--spp {}: the adaptive integrator of {} needs at least 2 samples per pixel",
+               opt->spp, opt->scene);
+        integrator.maxSamples = opt->spp;
+        integrator.minSamples = std::min(integrator.minSamples, opt->spp);
+      }
+    }
     BuiltScene built =
         buildScene(description, opt->model.empty() ? std::nullopt : std::optional(opt->model));
     RenderOptions options = built.options;
-    if (opt->spp > 0) options.samplesPerPixel = opt->spp;
+    if (sppGiven) options.samplesPerPixel = opt->spp;
     if (opt->seed) options.seed = *opt->seed;
     options.threads = opt->threads;
     options.timeLimitSeconds = opt->timeLimit;
@@ -86,8 +110,11 @@ Action addRenderCommand(CLI::App& app) {
     }
     const RenderStats& s = result.stats;
     fmt::print("integrator      {}\n", built.integrator->toString());
-    fmt::print("image           {}x{}, {:.1f} samples/pixel\n", result.image.width,
-               result.image.height, s.meanSamplesPerPixel());
+    fmt::print("image           {}x{}, {:.1f} samples/pixel{}\n", result.image.width,
+               result.image.height, s.meanSamplesPerPixel(),
+               s.unfinishedPixels ? fmt::format(" over the {} finished pixels",
+                                                result.image.pixels.size() - s.unfinishedPixels)
+                                  : std::string());
     fmt::print("wall time       {:.3f} s\n", s.seconds);
     fmt::print("samples         {}\n", s.samples);
     fmt::print("rays traced     {}\n", s.rays);

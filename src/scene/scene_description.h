@@ -132,6 +132,8 @@ struct SceneDescription {
   std::vector<BsdfDesc> bsdfs;
   std::vector<EmitterDesc> emitters;
   std::vector<ShapeDesc> shapes;
+  /// Names of the file's <default> elements (the parameters -D is meant to override).
+  std::vector<std::string> defaultNames;
 };
 
 /// The parameters in Mitsuba-like syntax, for error messages and logs.

@@ -105,6 +105,7 @@ class SceneParser {
     if (!element.has("value")) element.fail("<default name=\"{}\"> needs a 'value'", name);
     const auto [it, inserted] = defaultLocations_.emplace(name, element.location());
     if (!inserted) element.fail("<default name=\"{}\"> repeats the one at {}", name, it->second);
+    state_.scene.defaultNames.push_back(name);
     // Values from the command line win over the file's defaults.
     if (!defines_.count(name)) params_[name] = element.attr("value");
   }
