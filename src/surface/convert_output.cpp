@@ -21,7 +21,10 @@ nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tes
   j["tessellation"] = tessellationName(tessellation);
   j["patches"] = nlohmann::json::array();
   for (size_t t = 0; t < model.patchCount(); ++t) j["patches"].push_back(model.patchJson(t));
-  // Edge bridges (quadric-implicit-robust): the primitives after the patches.
+  // Edge bridges (quadric-implicit-robust): the primitives after the patches. The robust model
+  // always writes the array, empty when it has no bridges.
+  if (model.name() == std::string_view("quadric-implicit-robust"))
+    j["bridges"] = nlohmann::json::array();
   if (model.representation() == Representation::Implicit) {
     const std::vector<QuadricPatch>& all = model.renderPatches();
     for (size_t i = model.patchCount(); i < all.size(); ++i) {

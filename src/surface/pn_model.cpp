@@ -126,6 +126,7 @@ Vec3 PnModel::pnNormal(size_t t, double u, double v) const {
 nlohmann::json PnModel::patchJson(size_t t) const {
   const PnPatch& patch = patches_[t];
   nlohmann::json out;
+  for (int k = 0; k < 3; ++k) out["vertices"].push_back(vecJson(mesh().corner(t, k)));
   for (int i = 0; i <= 3; ++i)
     for (int j = 0; i + j <= 3; ++j)
       out["b"][fmt::format("b{}{}{}", i, j, 3 - i - j)] = vecJson(patch.b[i][j]);

@@ -375,7 +375,12 @@ void RobustImplicitModel::clipToPatch(size_t t) {
 nlohmann::json RobustImplicitModel::patchJson(size_t t) const {
   const QuadricPatch& patch = patches_[t];
   nlohmann::json j;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = mesh().corner(t, k);
+    j["vertices"].push_back({p.x(), p.y(), p.z()});
+  }
   j["quadric"] = patch.q;
+  j["planes"] = nlohmann::json::array();
   for (int i = 0; i < patch.planeCount; ++i) {
     const Vec4& p = patch.planes[i];
     j["planes"].push_back({p[0], p[1], p[2], p[3]});

@@ -135,6 +135,63 @@ TEST_F(MeshIo, MissingNormalsAreComputedAndBadInputNamesTheFile) {
   EXPECT_THROW(loadMesh(bad), Error);
 }
 
+TEST_F(MeshIo, BadObjLinesAreReportedWithFileAndLine) {
+  struct Case {
+    const char* text;
+    int line;
+    const char* what;
+  };
+  const std::string head = "# a triangle\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";  // lines 1-4
+  const Case cases[] = {
+      {"v 0 1 abc\nf 1 2 3\n", 5, "'abc' is not a finite number"},
+      {"f 1 2 3\nv 0 1 abc\n", 6, "'abc' is not a finite number"},  // unused vertex
+      {"v 0 1\n", 5, "has 2 values, expected x y z"},
+      {"vn 0 0 nan\n", 5, "'nan' is not a finite number"},
+      {"f 1 2 x\n", 5, "vertex index 'x' is not an integer"},
+      {"f 1 2 3 foo\n", 5, "vertex index 'foo' is not an integer"},
+      {"f 1 2\n", 5, "face has 2 vertices, expected at least 3"},
+      {"f 1 2 4\nv 1 1 1\n", 5, "vertex index 4 is out of range, expected 1..3"},
+      {"f 1 2 -4\n", 5, "vertex index -4 is out of range"},
+      {"f 1 2 0\n", 5, "vertex index 0 is out of range"},
+      {"f 1//1 2//1 3//1\n", 5, "normal index 1 is out of range, expected a normal defined"},
+      {"vt 0 0\nf 1/1 2/2 3/1\n", 6, "texcoord index 2 is out of range, expected 1..1"},
+      {"f 1/ 2 3\n", 5, "face vertex '1/' is malformed, expected i, i/j, i//k or i/j/k"},
+      {"f 1/1/1/1 2 3\n", 5, "is malformed"},
+  };
+  const auto path = dir / "bad.obj";
+  for (const Case& c : cases) {
+    std::ofstream(path) << head << c.text;
+    try {
+      loadMesh(path);
+      ADD_FAILURE() << "no error for: " << c.text;
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      const std::string where = path.string() + ":" + std::to_string(c.line) + ": ";
+      EXPECT_EQ(message.rfind(where, 0), 0u) << message;
+      EXPECT_NE(message.find(c.what), std::string::npos) << message;
+    }
+  }
+}
+
+TEST_F(MeshIo, ValidObjWithGroupsNegativeIndicesAndFullCornersLoads) {
+  const auto path = dir / "quad.obj";
+  std::ofstream(path) << "# two triangles and a quad\n"
+                         "mtllib none.mtl\no square\ng top\ns 1\nusemtl plain\n"
+                         "v 0 0 0\nv 1 0 0   # trailing comment\nv 1 1 0\n"
+                         "v 0 1 0 1.0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                         "vn 0 0 1\n"
+                         "f 1/1/1 2/2/1 3/3/1\n"
+                         "f -4/-4/-1 -2/-2/-1 -1/-1/-1\n"
+                         "g side\n"
+                         "v 0 0 -1\nv 1 0 -1\n"
+                         "f 1//1 -1//1 -2//1 2//1\n"
+                         "l 1 2\n";
+  const TriangleMesh m = loadMesh(path);
+  EXPECT_EQ(m.positions.size(), 6u);
+  EXPECT_EQ(m.triangleCount(), 4u);  // two triangles plus the quad split in two
+}
+
 TEST(Normals, AngleWeightedDiffersFromAverageOnIrregularFan) {
   TriangleMesh m;
   m.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0, 1)};

@@ -9,6 +9,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/shapes.h"
 #include "surface/convert_output.h"
+#include "surface/model.h"
 #include "surface/param_model.h"
 #include "surface/robust_implicit_model.h"
 
@@ -57,6 +58,36 @@ TEST_F(ConvertOutput, RobustJsonListsItsEdgeBridges) {
     EXPECT_EQ(jb["planes"].size(), size_t(b.planeCount));
     EXPECT_EQ(jb["bounds"]["max"][1].get<double>(), b.bounds.hi.y());
   }
+}
+
+TEST_F(ConvertOutput, EveryModelWritesThePatchCornersAsVertices) {
+  for (const std::string& name : modelNames()) {
+    const auto model = makeModel(name, mesh);
+    const nlohmann::json j = conversionJson(*model, Tessellation{});
+    ASSERT_EQ(j["patches"].size(), mesh->triangleCount()) << name;
+    for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+      const nlohmann::json& v = j["patches"][t]["vertices"];
+      ASSERT_EQ(v.size(), 3u) << name << " patch " << t;
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(v[k].size(), 3u) << name;
+        for (int c = 0; c < 3; ++c)
+          EXPECT_EQ(v[k][c].get<double>(), mesh->corner(t, k)[c]) << name << " patch " << t;
+      }
+    }
+  }
+}
+
+TEST_F(ConvertOutput, RobustJsonWritesAnEmptyBridgesArrayOnASphere) {
+  const RobustImplicitModel model(
+      std::make_shared<const TriangleMesh>(makeBuiltin("icosphere").mesh));
+  ASSERT_EQ(model.bridgeCount(), 0u);
+  const nlohmann::json j = conversionJson(model, Tessellation{});
+  ASSERT_TRUE(j.contains("bridges"));
+  EXPECT_TRUE(j["bridges"].is_array());
+  EXPECT_TRUE(j["bridges"].empty());
+  // Only the robust model has bridges.
+  EXPECT_FALSE(
+      conversionJson(*makeModel("quadric-implicit", mesh), Tessellation{}).contains("bridges"));
 }
 
 TEST_F(ConvertOutput, MeshFilesHoldTheWeldedTessellation) {
