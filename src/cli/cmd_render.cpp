@@ -76,18 +76,7 @@ Action addRenderCommand(CLI::App& app) {
                    "warning: -D {}={}: {} has no <default name=\"{}\">; the value reaches only "
                    "a ${} in the file\n",
                    name, value, opt->scene, name, name);
-    if (sppGiven) {
-      // --spp is the samples per pixel; for the adaptive integrator, its cap per pixel.
-      description.sensor.sampler.sampleCount = opt->spp;
-      IntegratorDesc& integrator = description.integrator;
-      if (integrator.type == IntegratorDesc::Type::Adaptive) {
-        if (opt->spp < 2)
-          fail("--spp {}: the adaptive integrator of {} needs at least 2 samples per pixel",
-               opt->spp, opt->scene);
-        integrator.maxSamples = opt->spp;
-        integrator.minSamples = std::min(integrator.minSamples, opt->spp);
-      }
-    }
+    if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
     BuiltScene built =
         buildScene(description, opt->model.empty() ? std::nullopt : std::optional(opt->model));
     RenderOptions options = built.options;

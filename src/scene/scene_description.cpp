@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "math/error.h"
+
 namespace quadtri {
 
 namespace {
@@ -181,6 +185,18 @@ std::string toString(const ShapeDesc& s) {
   if (s.areaRadiance) params += fmt::format(" area_radiance=[{}]", colorText(*s.areaRadiance));
   return fmt::format("<shape type=\"{}\"{}> ({}){}", shapeTypeName(s.type), idText(s.id),
                      s.location, params);
+}
+
+void overrideSamplesPerPixel(SceneDescription& scene, int samplesPerPixel) {
+  if (samplesPerPixel < 1) fail("--spp {}: expected a positive count", samplesPerPixel);
+  scene.sensor.sampler.sampleCount = samplesPerPixel;
+  IntegratorDesc& integrator = scene.integrator;
+  if (integrator.type != IntegratorDesc::Type::Adaptive) return;
+  if (samplesPerPixel < 2)
+    fail("--spp {}: the adaptive integrator of {} needs at least 2 samples per pixel",
+         samplesPerPixel, scene.file.string());
+  integrator.maxSamples = samplesPerPixel;
+  integrator.minSamples = std::min(integrator.minSamples, samplesPerPixel);
 }
 
 }  // namespace quadtri

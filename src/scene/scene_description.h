@@ -136,6 +136,11 @@ struct SceneDescription {
   std::vector<std::string> defaultNames;
 };
 
+/// Sets the samples per pixel (`render --spp`): the sampler's sample_count and, for an adaptive
+/// integrator, its cap per pixel (min_samples lowered to it where needed). Throws Error below 1,
+/// or below 2 for an adaptive integrator.
+void overrideSamplesPerPixel(SceneDescription& scene, int samplesPerPixel);
+
 /// The parameters in Mitsuba-like syntax, for error messages and logs.
 std::string toString(const SensorDesc& sensor);
 std::string toString(const IntegratorDesc& integrator);

@@ -153,6 +153,39 @@ TEST(SceneTransform, RotateTranslateScaleMatrix) {
   EXPECT_LT((apply(m, Vec3(1, 0, 0)) - Vec3(5, 7, 7)).norm(), 1e-15);
 }
 
+TEST(SceneIntegrator, SamplesPerPixelOverrideCapsAdaptiveIntegrators) {
+  const std::string sensor =
+      R"(<sensor type="perspective"><float name="fov" value="40"/>
+         <sampler type="independent"><integer name="sample_count" value="64"/></sampler>
+         </sensor>)";
+  SceneDescription path = parse(sensor + R"(<integrator type="path"/>)");
+  overrideSamplesPerPixel(path, 8);
+  EXPECT_EQ(path.sensor.sampler.sampleCount, 8);
+  overrideSamplesPerPixel(path, 1);
+  EXPECT_EQ(path.sensor.sampler.sampleCount, 1);
+  EXPECT_THROW(overrideSamplesPerPixel(path, 0), Error);
+
+  const std::string adaptive = sensor + R"(<integrator type="adaptive">
+      <integer name="min_samples" value="16"/><integer name="max_samples" value="500"/>
+      <integrator type="path"/></integrator>)";
+  SceneDescription a = parse(adaptive);
+  overrideSamplesPerPixel(a, 100);
+  EXPECT_EQ(a.integrator.maxSamples, 100);
+  EXPECT_EQ(a.integrator.minSamples, 16);
+  overrideSamplesPerPixel(a, 4);
+  EXPECT_EQ(a.integrator.maxSamples, 4);
+  EXPECT_EQ(a.integrator.minSamples, 4);
+  EXPECT_EQ(a.sensor.sampler.sampleCount, 4);
+  EXPECT_THROW(overrideSamplesPerPixel(a, 1), Error);
+}
+
+TEST(SceneDefaults, NamesOfTheDefaultsAreRecorded) {
+  const SceneDescription d = parse(
+      std::string(R"(<default name="res" value="64"/><default name="spp" value="4"/>)") + kSensor,
+      {{"spp", "8"}});
+  EXPECT_EQ(d.defaultNames, (std::vector<std::string>{"res", "spp"}));
+}
+
 TEST(SceneIntegrator, EveryTypeAndItsParameters) {
   const std::string sensor =
       R"(<sensor type="perspective"><float name="fov" value="40"/>
