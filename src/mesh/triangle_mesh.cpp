@@ -24,6 +24,12 @@ Bounds3 TriangleMesh::bounds() const {
   return b;
 }
 
+double TriangleMesh::meanEdgeLength(size_t t) const {
+  return ((corner(t, 1) - corner(t, 0)).norm() + (corner(t, 2) - corner(t, 1)).norm() +
+          (corner(t, 0) - corner(t, 2)).norm()) /
+         3.0;
+}
+
 double TriangleMesh::meanEdgeLength() const {
   if (triangles.empty()) return 0.0;
   double sum = 0.0;

@@ -34,6 +34,8 @@ struct TriangleMesh {
 
   Bounds3 bounds() const;
   double meanEdgeLength() const;
+  /// Mean length of triangle t's three edges.
+  double meanEdgeLength(size_t t) const;
 
   /// Checks indices, finiteness and normal layout; throws Error naming the element otherwise.
   void validate(const std::string& what) const;

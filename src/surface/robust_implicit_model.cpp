@@ -192,10 +192,7 @@ bool RobustImplicitModel::coversItself(size_t t) const {
   const TriangleMesh& m = mesh();
   const QuadricPatch& patch = patches_[t];
   const Vec3& n = frames_[t].faceNormal;
-  const double scale =
-      ((m.corner(t, 1) - m.corner(t, 0)).norm() + (m.corner(t, 2) - m.corner(t, 1)).norm() +
-       (m.corner(t, 0) - m.corner(t, 2)).norm()) /
-      3.0;
+  const double scale = m.meanEdgeLength(t);
   // Lines along the face normal through the triangle's inner lattice points: each must meet
   // the clipped patch within a mean edge length of the triangle.
   constexpr int level = 6;
@@ -325,10 +322,7 @@ void RobustImplicitModel::clipToPatch(size_t t) {
   const Frame& frame = frames_[t];
   QuadricPatch& patch = patches_[t];
   const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
-  const double scale =
-      ((m.corner(t, 1) - m.corner(t, 0)).norm() + (m.corner(t, 2) - m.corner(t, 1)).norm() +
-       (m.corner(t, 0) - m.corner(t, 2)).norm()) /
-      3.0;
+  const double scale = m.meanEdgeLength(t);
   const int n = kBoundSamples;
   std::vector<Vec3> grid;
   grid.reserve((n + 1) * (n + 2) / 2);
