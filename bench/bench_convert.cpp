@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "mesh/shapes.h"
-#include "surface/model.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/model.h"
 
 namespace {
 

@@ -22,13 +22,13 @@
 #include <thread>
 #include <vector>
 
-#include "render/accel/accel.h"
-#include "render/camera.h"
-#include "render/render_scene.h"
-#include "render/renderer.h"
-#include "render/sampling/rng.h"
-#include "render/scene_builder.h"
-#include "scene/scene_loader.h"
+#include "quadtri/geometry/accel.h"
+#include "quadtri/render/camera.h"
+#include "quadtri/render/render_scene.h"
+#include "quadtri/render/renderer.h"
+#include "quadtri/geometry/rng.h"
+#include "quadtri/scene/scene_builder.h"
+#include "quadtri/scene/scene_loader.h"
 
 namespace {
 

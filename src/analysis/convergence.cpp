@@ -1,4 +1,4 @@
-#include "analysis/convergence.h"
+#include "quadtri/analysis/convergence.h"
 
 #include <fmt/format.h>
 
@@ -6,11 +6,11 @@
 #include <cmath>
 #include <map>
 
-#include "analysis/metrics.h"
-#include "io/line_plot.h"
-#include "math/error.h"
-#include "mesh/mesh_io.h"
-#include "surface/model.h"
+#include "quadtri/analysis/metrics.h"
+#include "quadtri/io/line_plot.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/model.h"
 
 namespace quadtri {
 namespace {

@@ -1,4 +1,4 @@
-#include "analysis/crack_rate.h"
+#include "quadtri/analysis/crack_rate.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "math/error.h"
-#include "render/sampling/rng.h"
+#include "quadtri/math/error.h"
+#include "quadtri/geometry/rng.h"
 
 namespace quadtri {
 namespace {

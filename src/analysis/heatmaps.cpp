@@ -1,11 +1,11 @@
-#include "analysis/heatmaps.h"
+#include "quadtri/analysis/heatmaps.h"
 
 #include <fmt/core.h>
 
 #include <cmath>
 
-#include "surface/edge_curves.h"
-#include "surface/quadric_patch.h"
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
 namespace {

@@ -1,4 +1,4 @@
-#include "analysis/metrics.h"
+#include "quadtri/analysis/metrics.h"
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -7,8 +7,8 @@
 #include <array>
 #include <nlohmann/json.hpp>
 
-#include "math/error.h"
-#include "render/accel/model_geometry.h"
+#include "quadtri/math/error.h"
+#include "quadtri/geometry/model_geometry.h"
 
 namespace quadtri {
 namespace {

@@ -1,10 +1,10 @@
-#include "analysis/tessellation_view.h"
+#include "quadtri/analysis/tessellation_view.h"
 
 #include <fmt/core.h>
 
 #include <cmath>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

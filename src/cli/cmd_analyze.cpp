@@ -4,12 +4,12 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 
-#include "analysis/heatmaps.h"
-#include "analysis/metrics.h"
-#include "analysis/tessellation_view.h"
-#include "cli/commands.h"
-#include "math/error.h"
-#include "mesh/mesh_io.h"
+#include "quadtri/analysis/heatmaps.h"
+#include "quadtri/analysis/metrics.h"
+#include "quadtri/analysis/tessellation_view.h"
+#include "commands.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/mesh_io.h"
 
 namespace quadtri::cli {
 

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cstring>
 
-#include "analysis/convergence.h"
-#include "cli/commands.h"
-#include "io/atomic_file.h"
-#include "math/error.h"
-#include "surface/model.h"
+#include "quadtri/analysis/convergence.h"
+#include "commands.h"
+#include "quadtri/io/atomic_file.h"
+#include "quadtri/math/error.h"
+#include "quadtri/surface/model.h"
 
 namespace quadtri::cli {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <chrono>
 
-#include "cli/commands.h"
-#include "mesh/mesh_io.h"
-#include "surface/convert_output.h"
+#include "commands.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/convert_output.h"
 
 namespace quadtri::cli {
 

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <sstream>
 
-#include "cli/commands.h"
-#include "io/atomic_file.h"
-#include "io/line_plot.h"
-#include "math/error.h"
-#include "render/figure.h"
-#include "surface/model.h"
+#include "commands.h"
+#include "quadtri/io/atomic_file.h"
+#include "quadtri/io/line_plot.h"
+#include "quadtri/math/error.h"
+#include "quadtri/report/figure.h"
+#include "quadtri/surface/model.h"
 
 namespace quadtri::cli {
 namespace {

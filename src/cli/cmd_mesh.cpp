@@ -2,9 +2,9 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
-#include "cli/commands.h"
-#include "mesh/mesh_io.h"
-#include "mesh/shapes.h"
+#include "commands.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/mesh/shapes.h"
 
 namespace quadtri::cli {
 

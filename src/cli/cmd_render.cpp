@@ -7,12 +7,12 @@
 #include <csignal>
 #include <cstdio>
 
-#include "cli/commands.h"
-#include "math/error.h"
-#include "render/image_io.h"
-#include "render/scene_builder.h"
-#include "scene/scene_loader.h"
-#include "surface/model.h"
+#include "commands.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/image_io.h"
+#include "quadtri/scene/scene_builder.h"
+#include "quadtri/scene/scene_loader.h"
+#include "quadtri/surface/model.h"
 
 namespace quadtri::cli {
 namespace {

@@ -4,8 +4,8 @@
 #include <exception>
 #include <vector>
 
-#include "cli/commands.h"
-#include "math/error.h"
+#include "commands.h"
+#include "quadtri/math/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"quadtri: turns triangle meshes into curved quadric triangles and measures them"};

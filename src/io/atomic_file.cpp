@@ -1,11 +1,11 @@
-#include "io/atomic_file.h"
+#include "quadtri/io/atomic_file.h"
 
 #include <unistd.h>
 
 #include <atomic>
 #include <fstream>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

@@ -1,13 +1,16 @@
-#include "io/canvas.h"
+#include "quadtri/io/canvas.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 
-#include "io/atomic_file.h"
-#include "math/error.h"
+#include "quadtri/io/atomic_file.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 
@@ -42,13 +45,35 @@ void Canvas::fillRect(int x0, int y0, int x1, int y1, const Rgb& c) {
                                      std::min(height_, y1), 0, 1, 0, 3));
 }
 
+const std::string& labelFontPath() {
+  // Found at run time, so the installed library carries no path of the build machine: the
+  // QUADTRI_FONT environment variable first, then where Debian and other distributions put
+  // DejaVu Sans.
+  static const std::string path = [] {
+    if (const char* env = std::getenv("QUADTRI_FONT"); env && *env) return std::string(env);
+    static constexpr std::array candidates = {
+        "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+        "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+        "/usr/share/fonts/TTF/DejaVuSans.ttf",
+        "/usr/local/share/fonts/DejaVuSans.ttf",
+    };
+    for (const char* c : candidates) {
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(c, ec)) return std::string(c);
+    }
+    return std::string(candidates[0]);
+  }();
+  return path;
+}
+
 void Canvas::text(int x, int y, const std::string& s, int size, const Rgb& c, bool centered) {
   const bool ok = OIIO::ImageBufAlgo::render_text(
-      impl_->buf, x, y, s, size, QUADTRI_FONT_PATH, c,
+      impl_->buf, x, y, s, size, labelFontPath(), c,
       centered ? OIIO::ImageBufAlgo::TextAlignX::Center : OIIO::ImageBufAlgo::TextAlignX::Left,
       centered ? OIIO::ImageBufAlgo::TextAlignY::Center : OIIO::ImageBufAlgo::TextAlignY::Baseline);
   if (!ok)
-    fail("cannot draw text with the font {} ({}): install fonts-dejavu-core", QUADTRI_FONT_PATH,
+    fail("cannot draw text with the font {} ({}): install fonts-dejavu-core or set QUADTRI_FONT",
+         labelFontPath(),
          impl_->buf.geterror());
 }
 

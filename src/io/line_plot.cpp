@@ -1,11 +1,11 @@
-#include "io/line_plot.h"
+#include "quadtri/io/line_plot.h"
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

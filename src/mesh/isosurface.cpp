@@ -1,10 +1,10 @@
-#include "mesh/isosurface.h"
+#include "quadtri/mesh/isosurface.h"
 
 #include <array>
 #include <cmath>
 #include <unordered_map>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

@@ -1,4 +1,4 @@
-#include "mesh/mesh_io.h"
+#include "quadtri/mesh/mesh_io.h"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -12,8 +12,8 @@
 #include <map>
 #include <sstream>
 
-#include "io/atomic_file.h"
-#include "math/error.h"
+#include "quadtri/io/atomic_file.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

@@ -1,6 +1,6 @@
-#include "mesh/normals.h"
+#include "quadtri/mesh/normals.h"
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

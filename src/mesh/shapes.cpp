@@ -1,13 +1,13 @@
-#include "mesh/shapes.h"
+#include "quadtri/mesh/shapes.h"
 
 #include <fmt/ranges.h>
 
 #include <charconv>
 #include <map>
 
-#include "math/error.h"
-#include "mesh/isosurface.h"
-#include "mesh/normals.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/isosurface.h"
+#include "quadtri/mesh/normals.h"
 
 namespace quadtri {
 namespace {

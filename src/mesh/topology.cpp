@@ -1,4 +1,4 @@
-#include "mesh/topology.h"
+#include "quadtri/mesh/topology.h"
 
 #include <algorithm>
 #include <unordered_map>

@@ -1,6 +1,6 @@
-#include "mesh/triangle_mesh.h"
+#include "quadtri/mesh/triangle_mesh.h"
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

@@ -1,6 +1,6 @@
-#include "render/camera.h"
+#include "quadtri/render/camera.h"
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

@@ -1,12 +1,12 @@
-#include "render/image_io.h"
+#include "quadtri/render/image_io.h"
 
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "io/atomic_file.h"
-#include "math/error.h"
+#include "quadtri/io/atomic_file.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

@@ -1,13 +1,13 @@
-#include "render/render_scene.h"
+#include "quadtri/render/render_scene.h"
 
-#include "math/error.h"
-#include "render/accel/model_geometry.h"
-#include "render/emitter/constant_emitter.h"
-#include "render/emitter/mesh_area_emitter.h"
-#include "render/emitter/point_emitter.h"
-#include "render/emitter/sphere_area_emitter.h"
-#include "surface/quadric_patch.h"
-#include "surface/shading_offset.h"
+#include "quadtri/math/error.h"
+#include "quadtri/geometry/model_geometry.h"
+#include "quadtri/render/emitter/constant_emitter.h"
+#include "quadtri/render/emitter/mesh_area_emitter.h"
+#include "quadtri/render/emitter/point_emitter.h"
+#include "quadtri/render/emitter/sphere_area_emitter.h"
+#include "quadtri/surface/quadric_patch.h"
+#include "quadtri/surface/shading_offset.h"
 
 namespace quadtri {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/renderer.h"
+#include "quadtri/render/renderer.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,8 +9,8 @@
 #include <mutex>
 #include <string>
 
-#include "math/error.h"
-#include "render/render_scene.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/render_scene.h"
 
 namespace quadtri {
 namespace {

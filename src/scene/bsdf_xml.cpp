@@ -10,8 +10,8 @@
 //     <string name="material" value="Cu"/>
 //   </bsdf>
 //   <bsdf type="twosided"><bsdf type="diffuse"/></bsdf>
-#include "scene/properties.h"
-#include "scene/scene_parser.h"
+#include "properties.h"
+#include "scene_parser.h"
 
 namespace quadtri {
 

@@ -7,8 +7,8 @@
 //   <emitter type="constant"><rgb name="radiance" value="1"/></emitter>
 //   <shape type="rectangle"> <emitter type="area"><rgb name="radiance" value="5"/></emitter>
 //   </shape>
-#include "scene/properties.h"
-#include "scene/scene_parser.h"
+#include "properties.h"
+#include "scene_parser.h"
 
 namespace quadtri {
 

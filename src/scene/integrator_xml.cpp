@@ -13,8 +13,8 @@
 //     <integer name="min_samples" value="16"/> <integer name="max_samples" value="256"/>
 //     <integrator type="path"> ... </integrator>
 //   </integrator>
-#include "scene/properties.h"
-#include "scene/scene_parser.h"
+#include "properties.h"
+#include "scene_parser.h"
 
 namespace quadtri {
 

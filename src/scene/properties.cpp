@@ -1,10 +1,10 @@
-#include "scene/properties.h"
+#include "properties.h"
 
 #include <fmt/ranges.h>
 
 #include <algorithm>
 
-#include "scene/transform_xml.h"
+#include "transform_xml.h"
 
 namespace quadtri {
 

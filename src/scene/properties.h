@@ -8,9 +8,9 @@
 #include <variant>
 #include <vector>
 
-#include "math/vec.h"
-#include "render/color.h"
-#include "scene/xml_file.h"
+#include "quadtri/math/vec.h"
+#include "quadtri/math/color.h"
+#include "xml_file.h"
 
 namespace quadtri {
 

@@ -1,10 +1,10 @@
-#include "scene/scene_description.h"
+#include "quadtri/scene/scene_description.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

@@ -1,11 +1,11 @@
 // The <scene> level: version, <default>, $name substitution, <include>, and dispatch of each
 // top-level object to its plugin parser.
-#include "scene/scene_loader.h"
+#include "quadtri/scene/scene_loader.h"
 
 #include <fstream>
 #include <sstream>
 
-#include "scene/scene_parser.h"
+#include "scene_parser.h"
 
 namespace quadtri {
 

@@ -4,8 +4,8 @@
 #include <map>
 #include <string>
 
-#include "scene/scene_description.h"
-#include "scene/xml_file.h"
+#include "quadtri/scene/scene_description.h"
+#include "xml_file.h"
 
 namespace quadtri {
 

@@ -13,8 +13,8 @@
 //   </sensor>
 #include <cmath>
 
-#include "scene/properties.h"
-#include "scene/scene_parser.h"
+#include "properties.h"
+#include "scene_parser.h"
 
 namespace quadtri {
 

@@ -15,9 +15,9 @@
 
 #include <algorithm>
 
-#include "scene/properties.h"
-#include "scene/scene_parser.h"
-#include "surface/model.h"
+#include "properties.h"
+#include "scene_parser.h"
+#include "quadtri/surface/model.h"
 
 namespace quadtri {
 

@@ -1,4 +1,4 @@
-#include "scene/transform_xml.h"
+#include "transform_xml.h"
 
 #include <cmath>
 

@@ -1,8 +1,8 @@
 // <transform> elements: Mitsuba 3's translate/rotate/scale/matrix/lookat, composed in order.
 #pragma once
 
-#include "math/vec.h"
-#include "scene/xml_file.h"
+#include "quadtri/math/vec.h"
+#include "xml_file.h"
 
 namespace quadtri {
 

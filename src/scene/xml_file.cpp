@@ -1,4 +1,4 @@
-#include "scene/xml_file.h"
+#include "xml_file.h"
 
 #include <fmt/ranges.h>
 

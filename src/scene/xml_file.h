@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

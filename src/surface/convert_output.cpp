@@ -1,11 +1,11 @@
-#include "surface/convert_output.h"
+#include "quadtri/surface/convert_output.h"
 
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
-#include "math/error.h"
-#include "mesh/mesh_io.h"
-#include "surface/quadric_patch.h"
+#include "quadtri/io/atomic_file.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
 

@@ -1,11 +1,11 @@
-#include "surface/edge_curves.h"
+#include "quadtri/surface/edge_curves.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/QR>
 
-#include "mesh/topology.h"
+#include "quadtri/mesh/topology.h"
 
 namespace quadtri {
 namespace {

@@ -1,8 +1,8 @@
-#include "surface/edges_model.h"
+#include "quadtri/surface/edges_model.h"
 
 #include <nlohmann/json.hpp>
 
-#include "surface/local_patches.h"
+#include "quadtri/surface/local_patches.h"
 
 namespace quadtri {
 namespace {

@@ -1,4 +1,4 @@
-#include "surface/flat_model.h"
+#include "quadtri/surface/flat_model.h"
 
 #include <nlohmann/json.hpp>
 

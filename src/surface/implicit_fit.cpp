@@ -1,4 +1,4 @@
-#include "surface/implicit_fit.h"
+#include "quadtri/surface/implicit_fit.h"
 
 #include <Eigen/QR>
 

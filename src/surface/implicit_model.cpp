@@ -1,11 +1,11 @@
-#include "surface/implicit_model.h"
+#include "quadtri/surface/implicit_model.h"
 
 #include <tbb/parallel_for.h>
 
 #include <nlohmann/json.hpp>
 
-#include "surface/implicit_fit.h"
-#include "surface/local_patches.h"
+#include "quadtri/surface/implicit_fit.h"
+#include "quadtri/surface/local_patches.h"
 
 namespace quadtri {
 namespace {

@@ -1,12 +1,12 @@
-#include "surface/local_patches.h"
+#include "quadtri/surface/local_patches.h"
 
 #include <fmt/core.h>
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/topology.h"
-#include "surface/edge_curves.h"
-#include "surface/quadric_patch.h"
+#include "quadtri/mesh/topology.h"
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
 

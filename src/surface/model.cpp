@@ -1,17 +1,17 @@
-#include "surface/model.h"
+#include "quadtri/surface/model.h"
 
 #include <fmt/ranges.h>
 
-#include "math/error.h"
-#include "surface/edges_model.h"
-#include "surface/flat_model.h"
-#include "surface/implicit_model.h"
-#include "surface/nagata_model.h"
-#include "surface/param_model.h"
-#include "surface/phong_model.h"
-#include "surface/pn_model.h"
-#include "surface/quadric_patch.h"
-#include "surface/robust_implicit_model.h"
+#include "quadtri/math/error.h"
+#include "quadtri/surface/edges_model.h"
+#include "quadtri/surface/flat_model.h"
+#include "quadtri/surface/implicit_model.h"
+#include "quadtri/surface/nagata_model.h"
+#include "quadtri/surface/param_model.h"
+#include "quadtri/surface/phong_model.h"
+#include "quadtri/surface/pn_model.h"
+#include "quadtri/surface/quadric_patch.h"
+#include "quadtri/surface/robust_implicit_model.h"
 
 namespace quadtri {
 

@@ -1,9 +1,9 @@
-#include "surface/nagata_model.h"
+#include "quadtri/surface/nagata_model.h"
 
 #include <nlohmann/json.hpp>
 
-#include "surface/edge_curves.h"
-#include "surface/local_patches.h"
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/local_patches.h"
 
 namespace quadtri {
 namespace {

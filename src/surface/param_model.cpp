@@ -1,10 +1,10 @@
-#include "surface/param_model.h"
+#include "quadtri/surface/param_model.h"
 
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 
-#include "surface/local_patches.h"
+#include "quadtri/surface/local_patches.h"
 
 namespace quadtri {
 

@@ -1,9 +1,9 @@
-#include "surface/phong_model.h"
+#include "quadtri/surface/phong_model.h"
 
 #include <nlohmann/json.hpp>
 
-#include "math/error.h"
-#include "surface/local_patches.h"
+#include "quadtri/math/error.h"
+#include "quadtri/surface/local_patches.h"
 
 namespace quadtri {
 

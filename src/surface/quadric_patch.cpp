@@ -1,4 +1,4 @@
-#include "surface/quadric_patch.h"
+#include "quadtri/surface/quadric_patch.h"
 
 #include <cmath>
 

@@ -1,12 +1,12 @@
-#include "surface/robust_implicit_model.h"
+#include "quadtri/surface/robust_implicit_model.h"
 
 #include <tbb/parallel_for.h>
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/topology.h"
-#include "surface/robust_pencil.h"
-#include "surface/robust_quadric_fit.h"
+#include "quadtri/mesh/topology.h"
+#include "quadtri/surface/robust_pencil.h"
+#include "quadtri/surface/robust_quadric_fit.h"
 
 namespace quadtri {
 namespace {

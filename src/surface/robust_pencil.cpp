@@ -1,4 +1,4 @@
-#include "surface/robust_pencil.h"
+#include "quadtri/surface/robust_pencil.h"
 
 #include <Eigen/SparseCholesky>
 

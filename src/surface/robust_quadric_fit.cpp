@@ -1,4 +1,4 @@
-#include "surface/robust_quadric_fit.h"
+#include "quadtri/surface/robust_quadric_fit.h"
 
 #include <Eigen/SVD>
 

@@ -1,4 +1,4 @@
-#include "surface/shading_offset.h"
+#include "quadtri/surface/shading_offset.h"
 
 namespace quadtri {
 

@@ -1,9 +1,9 @@
-#include "surface/tessellate.h"
+#include "quadtri/surface/tessellate.h"
 
 #include <unordered_map>
 
-#include "math/error.h"
-#include "mesh/topology.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/topology.h"
 
 namespace quadtri {
 namespace {

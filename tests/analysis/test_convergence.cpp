@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "analysis/convergence.h"
-#include "math/error.h"
+#include "quadtri/analysis/convergence.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

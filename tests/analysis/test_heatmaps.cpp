@@ -3,9 +3,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "analysis/heatmaps.h"
-#include "mesh/shapes.h"
-#include "surface/quadric_patch.h"
+#include "quadtri/analysis/heatmaps.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
 namespace {

@@ -2,11 +2,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/metrics.h"
+#include "quadtri/analysis/metrics.h"
 #include "fixtures/sphere_patches.h"
-#include "math/error.h"
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
 
 namespace quadtri {
 namespace {

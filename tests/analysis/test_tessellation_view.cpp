@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "analysis/tessellation_view.h"
-#include "math/error.h"
-#include "mesh/shapes.h"
+#include "quadtri/analysis/tessellation_view.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/shapes.h"
 
 namespace quadtri {
 namespace {

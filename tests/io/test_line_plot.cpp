@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "io/line_plot.h"
-#include "math/error.h"
+#include "quadtri/io/line_plot.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri::testing {
 namespace {

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <map>
 
-#include "math/error.h"
-#include "mesh/isosurface.h"
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/isosurface.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
 
 namespace quadtri {
 namespace {

@@ -3,11 +3,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "math/error.h"
-#include "mesh/mesh_io.h"
-#include "mesh/normals.h"
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/mesh/normals.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
 
 namespace quadtri {
 namespace {

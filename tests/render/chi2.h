@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "math/vec.h"
+#include "quadtri/math/vec.h"
 
 namespace quadtri::testing {
 

@@ -5,15 +5,15 @@
 
 #include <memory>
 
-#include "math/error.h"
-#include "mesh/shapes.h"
-#include "render/bsdf/diffuse.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/render/bsdf/diffuse.h"
 #include "render/chi2.h"
-#include "render/integrator/integrator.h"
-#include "render/render_scene.h"
-#include "render/renderer.h"
-#include "render/sampling/warp.h"
-#include "surface/model.h"
+#include "quadtri/render/integrator/integrator.h"
+#include "quadtri/render/render_scene.h"
+#include "quadtri/render/renderer.h"
+#include "quadtri/render/sampling/warp.h"
+#include "quadtri/surface/model.h"
 
 namespace quadtri::testing {
 

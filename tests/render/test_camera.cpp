@@ -4,11 +4,11 @@
 
 #include <filesystem>
 
-#include "math/error.h"
-#include "render/camera.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/camera.h"
 #include "render/chi2.h"
-#include "render/filter.h"
-#include "render/image_io.h"
+#include "quadtri/render/filter.h"
+#include "quadtri/render/image_io.h"
 #include "render_fixtures.h"
 
 namespace quadtri::testing {

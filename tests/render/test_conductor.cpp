@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "math/error.h"
-#include "render/bsdf/conductor.h"
-#include "render/bsdf/fresnel.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/conductor.h"
+#include "quadtri/render/bsdf/fresnel.h"
 #include "render/bsdf_checks.h"
-#include "render/sampling/frame.h"
+#include "quadtri/render/sampling/frame.h"
 
 namespace quadtri {
 namespace {

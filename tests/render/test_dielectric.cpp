@@ -2,13 +2,13 @@
 
 #include <cmath>
 
-#include "math/error.h"
-#include "render/bsdf/dielectric.h"
-#include "render/bsdf/fresnel.h"
-#include "render/bsdf/ior_tables.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/dielectric.h"
+#include "quadtri/render/bsdf/fresnel.h"
+#include "quadtri/render/bsdf/ior_tables.h"
 #include "render/bsdf_checks.h"
-#include "render/sampling/frame.h"
-#include "render/sampling/warp.h"
+#include "quadtri/render/sampling/frame.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 namespace {

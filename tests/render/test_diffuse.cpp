@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
-#include "math/error.h"
-#include "render/bsdf/diffuse.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/diffuse.h"
 #include "render/bsdf_checks.h"
-#include "render/sampling/warp.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 namespace {

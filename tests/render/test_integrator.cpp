@@ -1,10 +1,10 @@
 // The path tracer against scenes whose radiance is known in closed form.
 #include <gtest/gtest.h>
 
-#include "render/bsdf/dielectric.h"
-#include "render/integrator/direct_integrator.h"
-#include "render/integrator/normals_integrator.h"
-#include "render/integrator/path_integrator.h"
+#include "quadtri/render/bsdf/dielectric.h"
+#include "quadtri/render/integrator/direct_integrator.h"
+#include "quadtri/render/integrator/normals_integrator.h"
+#include "quadtri/render/integrator/path_integrator.h"
 #include "render_fixtures.h"
 
 namespace quadtri::testing {

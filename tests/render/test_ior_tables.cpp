@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "math/error.h"
-#include "render/bsdf/ior_tables.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/ior_tables.h"
 
 namespace quadtri {
 namespace {

@@ -1,8 +1,8 @@
 // The tiled renderer: determinism, NaN handling, adaptive sampling and stopping early.
 #include <gtest/gtest.h>
 
-#include "render/integrator/adaptive_integrator.h"
-#include "render/integrator/path_integrator.h"
+#include "quadtri/render/integrator/adaptive_integrator.h"
+#include "quadtri/render/integrator/path_integrator.h"
 #include "render_fixtures.h"
 
 namespace quadtri::testing {

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "math/error.h"
-#include "render/bsdf/ggx.h"
-#include "render/bsdf/rough_conductor.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/ggx.h"
+#include "quadtri/render/bsdf/rough_conductor.h"
 #include "render/bsdf_checks.h"
-#include "render/sampling/warp.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 namespace {

@@ -2,10 +2,10 @@
 // terminator they remove.
 #include <gtest/gtest.h>
 
-#include "render/integrator/direct_integrator.h"
-#include "render/integrator/path_integrator.h"
+#include "quadtri/render/integrator/direct_integrator.h"
+#include "quadtri/render/integrator/path_integrator.h"
 #include "render_fixtures.h"
-#include "surface/shading_offset.h"
+#include "quadtri/surface/shading_offset.h"
 
 namespace quadtri::testing {
 namespace {

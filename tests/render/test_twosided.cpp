@@ -1,12 +1,12 @@
 #include <gtest/gtest.h>
 
-#include "math/error.h"
-#include "render/bsdf/dielectric.h"
-#include "render/bsdf/diffuse.h"
-#include "render/bsdf/rough_conductor.h"
-#include "render/bsdf/twosided.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/dielectric.h"
+#include "quadtri/render/bsdf/diffuse.h"
+#include "quadtri/render/bsdf/rough_conductor.h"
+#include "quadtri/render/bsdf/twosided.h"
 #include "render/bsdf_checks.h"
-#include "render/sampling/warp.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 namespace {

@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "render/chi2.h"
-#include "render/sampling/frame.h"
-#include "render/sampling/rng.h"
-#include "render/sampling/warp.h"
+#include "quadtri/render/sampling/frame.h"
+#include "quadtri/geometry/rng.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 namespace {

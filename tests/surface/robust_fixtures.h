@@ -5,7 +5,7 @@
 #include <functional>
 #include <random>
 
-#include "surface/robust_quadric_fit.h"
+#include "quadtri/surface/robust_quadric_fit.h"
 
 namespace quadtri::robust_test {
 

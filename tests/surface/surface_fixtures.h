@@ -7,8 +7,8 @@
 #include <memory>
 #include <random>
 
-#include "mesh/triangle_mesh.h"
-#include "surface/edge_curves.h"
+#include "quadtri/mesh/triangle_mesh.h"
+#include "quadtri/surface/edge_curves.h"
 
 namespace quadtri::test {
 

@@ -3,13 +3,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
-#include "surface/edge_curves.h"
-#include "surface/nagata_model.h"
-#include "surface/phong_model.h"
-#include "surface/pn_model.h"
-#include "surface/tessellate.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/nagata_model.h"
+#include "quadtri/surface/phong_model.h"
+#include "quadtri/surface/pn_model.h"
+#include "quadtri/surface/tessellate.h"
 
 namespace quadtri {
 namespace {

@@ -5,13 +5,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "math/error.h"
-#include "mesh/mesh_io.h"
-#include "mesh/shapes.h"
-#include "surface/convert_output.h"
-#include "surface/model.h"
-#include "surface/param_model.h"
-#include "surface/robust_implicit_model.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/convert_output.h"
+#include "quadtri/surface/model.h"
+#include "quadtri/surface/param_model.h"
+#include "quadtri/surface/robust_implicit_model.h"
 
 namespace quadtri {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
-#include "surface/edges_model.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
+#include "quadtri/surface/edges_model.h"
 #include "surface_fixtures.h"
 
 namespace quadtri {

@@ -9,11 +9,11 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "mesh/mesh_io.h"
-#include "mesh/shapes.h"
-#include "surface/implicit_fit.h"
-#include "surface/implicit_model.h"
-#include "surface/model.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/implicit_fit.h"
+#include "quadtri/surface/implicit_model.h"
+#include "quadtri/surface/model.h"
 
 namespace quadtri {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/shapes.h"
-#include "surface/param_model.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/param_model.h"
 #include "surface_fixtures.h"
 
 namespace quadtri {

@@ -3,11 +3,11 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
 #include "surface/robust_fixtures.h"
-#include "surface/robust_implicit_model.h"
-#include "surface/robust_quadric_fit.h"
+#include "quadtri/surface/robust_implicit_model.h"
+#include "quadtri/surface/robust_quadric_fit.h"
 
 namespace quadtri {
 namespace {

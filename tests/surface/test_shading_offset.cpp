@@ -5,9 +5,9 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "mesh/shapes.h"
-#include "surface/model.h"
-#include "surface/shading_offset.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/model.h"
+#include "quadtri/surface/shading_offset.h"
 #include "surface_fixtures.h"
 
 namespace quadtri::test {

@@ -4,10 +4,10 @@
 
 #include <Eigen/Geometry>
 
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
-#include "surface/edge_curves.h"
-#include "surface/model.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/model.h"
 #include "surface_fixtures.h"
 
 namespace quadtri {

@@ -1,10 +1,10 @@
 // Tessellations of the curved models: counts, welding and closedness.
 #include <gtest/gtest.h>
 
-#include "mesh/shapes.h"
-#include "mesh/topology.h"
-#include "surface/model.h"
-#include "surface/tessellate.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/mesh/topology.h"
+#include "quadtri/surface/model.h"
+#include "quadtri/surface/tessellate.h"
 
 namespace quadtri {
 namespace {

@@ -6,7 +6,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
-#include "surface/edges_model.h"
+#include "quadtri/surface/edges_model.h"
 #include "surface_fixtures.h"
 
 namespace quadtri {

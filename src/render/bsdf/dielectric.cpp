@@ -1,12 +1,12 @@
-#include "render/bsdf/dielectric.h"
+#include "quadtri/render/bsdf/dielectric.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "math/error.h"
-#include "render/bsdf/fresnel.h"
-#include "render/sampling/frame.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/fresnel.h"
+#include "quadtri/render/sampling/frame.h"
 
 namespace quadtri {
 

@@ -1,4 +1,4 @@
-#include "render/bsdf/fresnel.h"
+#include "quadtri/render/bsdf/fresnel.h"
 
 #include <cmath>
 #include <complex>

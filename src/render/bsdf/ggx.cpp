@@ -1,4 +1,4 @@
-#include "render/bsdf/ggx.h"
+#include "quadtri/render/bsdf/ggx.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "render/bsdf/ior_tables.h"
+#include "quadtri/render/bsdf/ior_tables.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -7,7 +7,7 @@
 #include <array>
 #include <cctype>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

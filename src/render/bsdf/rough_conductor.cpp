@@ -1,13 +1,13 @@
-#include "render/bsdf/rough_conductor.h"
+#include "quadtri/render/bsdf/rough_conductor.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "math/error.h"
-#include "render/bsdf/conductor.h"
-#include "render/bsdf/fresnel.h"
-#include "render/sampling/frame.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/conductor.h"
+#include "quadtri/render/bsdf/fresnel.h"
+#include "quadtri/render/sampling/frame.h"
 
 namespace quadtri {
 

@@ -1,8 +1,8 @@
-#include "render/bsdf/twosided.h"
+#include "quadtri/render/bsdf/twosided.h"
 
 #include <fmt/format.h>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/emitter/light_sampler.h"
+#include "quadtri/render/emitter/light_sampler.h"
 
 #include <algorithm>
 

@@ -1,11 +1,11 @@
-#include "render/emitter/mesh_area_emitter.h"
+#include "quadtri/render/emitter/mesh_area_emitter.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "math/error.h"
-#include "render/sampling/warp.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 

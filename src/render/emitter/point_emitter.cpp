@@ -1,8 +1,8 @@
-#include "render/emitter/point_emitter.h"
+#include "quadtri/render/emitter/point_emitter.h"
 
 #include <fmt/format.h>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

@@ -1,9 +1,9 @@
-#include "render/emitter/sphere_area_emitter.h"
+#include "quadtri/render/emitter/sphere_area_emitter.h"
 
 #include <fmt/format.h>
 
-#include "math/error.h"
-#include "render/sampling/warp.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 

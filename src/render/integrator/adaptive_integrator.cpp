@@ -1,8 +1,8 @@
-#include "render/integrator/adaptive_integrator.h"
+#include "quadtri/render/integrator/adaptive_integrator.h"
 
 #include <fmt/format.h>
 
-#include "math/error.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 

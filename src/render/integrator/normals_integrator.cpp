@@ -1,6 +1,6 @@
-#include "render/integrator/normals_integrator.h"
+#include "quadtri/render/integrator/normals_integrator.h"
 
-#include "render/render_scene.h"
+#include "quadtri/render/render_scene.h"
 
 namespace quadtri {
 

@@ -1,11 +1,11 @@
-#include "render/integrator/path_integrator.h"
+#include "quadtri/render/integrator/path_integrator.h"
 
 #include <fmt/format.h>
 
-#include "math/error.h"
-#include "render/render_scene.h"
-#include "render/sampling/frame.h"
-#include "render/sampling/warp.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/render_scene.h"
+#include "quadtri/render/sampling/frame.h"
+#include "quadtri/render/sampling/warp.h"
 
 namespace quadtri {
 

@@ -1,8 +1,8 @@
-#include "render/sampling/warp.h"
+#include "quadtri/render/sampling/warp.h"
 
 #include <cmath>
 
-#include "render/sampling/frame.h"
+#include "quadtri/render/sampling/frame.h"
 
 namespace quadtri {
 namespace {

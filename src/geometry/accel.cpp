@@ -1,0 +1,359 @@
+#include "quadtri/geometry/accel.h"
+
+#include <embree3/rtcore.h>
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+
+#include <cmath>
+#include <mutex>
+#include <string>
+
+#include "quadtri/math/error.h"
+
+namespace quadtri {
+namespace {
+
+constexpr unsigned kInvalidId = RTC_INVALID_GEOMETRY_ID;
+
+// Nearest float not above x (not below x for roundUp): Embree traverses with floats, and the
+// float interval must contain the double one so that no hit is culled by rounding.
+float roundDown(double x) {
+  float f = float(x);
+  if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float roundUp(double x) {
+  float f = float(x);
+  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// What the patch callbacks need: the patches and how much to grow their bounds. The double ray
+// differs from Embree's float copy by about 6e-8 of the distance travelled, so boxes grow by
+// 1e-5 of the geometry's extent to never cull a hit of the double ray.
+struct PatchGeometry {
+  const std::vector<QuadricPatch>* patches = nullptr;
+  double margin = 0.0;
+};
+
+// Embree's context extended with the double-precision ray, so quadric patches are intersected
+// in double while Embree traverses with floats. Embree hands this pointer to the callbacks.
+struct TraceContext {
+  RTCIntersectContext embree;  // first member: the callbacks cast the context back
+  const Ray* ray = nullptr;
+  double tnear = 0.0;         // the ray's tnear clamped to >= 0, as Embree clamps its copy
+  double patchT = kInfinity;  // the nearest patch hit so far, in double
+  unsigned patchGeometry = kInvalidId, patchPrimitive = kInvalidId;
+  const std::vector<QuadricPatch>* patches = nullptr;  // those of the nearest patch hit
+  std::vector<RayHit>* hits = nullptr;  // set by allHits(): record every hit, keep none
+};
+
+RayHit patchHit(const std::vector<QuadricPatch>& patches, const Ray& ray, double t,
+                unsigned geometry, unsigned primitive) {
+  RayHit hit;
+  hit.t = t;
+  hit.geometry = geometry;
+  hit.primitive = primitive;
+  hit.geometricNormal =
+      safeNormalized(primitiveNormal(patches, primitive, ray.origin + t * ray.direction));
+  return hit;
+}
+
+// allHits(): both roots of the patch, recorded without shortening the ray.
+void collectPatchHits(const std::vector<QuadricPatch>& patches, TraceContext& ctx,
+                      unsigned geometry, unsigned primitive) {
+  double tmin = ctx.tnear, t;
+  while (intersectPrimitive(patches, primitive, ctx.ray->origin, ctx.ray->direction, tmin,
+                            ctx.ray->tfar, t)) {
+    ctx.hits->push_back(patchHit(patches, *ctx.ray, t, geometry, primitive));
+    tmin = t;
+  }
+}
+
+// allHits() for triangles: the context filter sees each candidate (its t in the ray's tfar),
+// records it and rejects it so that traversal goes on.
+void collectTriangleHit(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<TraceContext*>(args->context);
+  RayHit hit;
+  hit.t = RTCRayN_tfar(args->ray, 1, 0);
+  hit.geometry = RTCHitN_geomID(args->hit, 1, 0);
+  hit.primitive = RTCHitN_primID(args->hit, 1, 0);
+  hit.u = RTCHitN_u(args->hit, 1, 0);
+  hit.v = RTCHitN_v(args->hit, 1, 0);
+  hit.geometricNormal = safeNormalized(Vec3(
+      RTCHitN_Ng_x(args->hit, 1, 0), RTCHitN_Ng_y(args->hit, 1, 0), RTCHitN_Ng_z(args->hit, 1, 0)));
+  ctx->hits->push_back(hit);
+  args->valid[0] = 0;
+}
+
+void patchBounds(const RTCBoundsFunctionArguments* args) {
+  const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
+  const Bounds3& b = (*g->patches)[args->primID].bounds;
+  RTCBounds* o = args->bounds_o;
+  o->lower_x = roundDown(b.lo.x() - g->margin);
+  o->lower_y = roundDown(b.lo.y() - g->margin);
+  o->lower_z = roundDown(b.lo.z() - g->margin);
+  o->upper_x = roundUp(b.hi.x() + g->margin);
+  o->upper_y = roundUp(b.hi.y() + g->margin);
+  o->upper_z = roundUp(b.hi.z() + g->margin);
+}
+
+// Accel traces single rays (rtcIntersect1/rtcOccluded1), so every callback sees N == 1.
+void intersectPatch(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* ctx = reinterpret_cast<TraceContext*>(args->context);
+  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const std::vector<QuadricPatch>& patches =
+      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
+  if (ctx->hits) return collectPatchHits(patches, *ctx, args->geomID, args->primID);
+  // While a patch is the nearest hit (or nothing is: both ids are then invalid and patchT is
+  // the ray's tfar) its exact t bounds the search; after a triangle took over, its float t does.
+  const bool patchIsNearest =
+      rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
+  const double tmax =
+      patchIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
+  double t;
+  if (!intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                          tmax, t))
+    return;
+  ctx->patchT = t;
+  ctx->patchGeometry = args->geomID;
+  ctx->patchPrimitive = args->primID;
+  ctx->patches = &patches;
+  rayhit->ray.tfar = roundDown(t);
+  rayhit->hit.geomID = args->geomID;
+  rayhit->hit.primID = args->primID;
+  rayhit->hit.instID[0] = args->context->instID[0];
+  rayhit->hit.u = rayhit->hit.v = 0.0f;
+}
+
+void occludedPatch(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
+  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
+  const std::vector<QuadricPatch>& patches =
+      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
+  double t;
+  if (intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                         ctx->ray->tfar, t))
+    ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
+}
+
+void fillRay(const Ray& ray, RTCRay& out) {
+  out.org_x = float(ray.origin.x());
+  out.org_y = float(ray.origin.y());
+  out.org_z = float(ray.origin.z());
+  out.dir_x = float(ray.direction.x());
+  out.dir_y = float(ray.direction.y());
+  out.dir_z = float(ray.direction.z());
+  out.tnear = roundDown(std::max(ray.tnear, 0.0));
+  out.tfar = roundUp(ray.tfar);
+  out.time = 0.0f;
+  out.mask = ~0u;
+  out.id = 0;
+  out.flags = 0;
+}
+
+}  // namespace
+
+struct Accel::Impl {
+  Options options;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  bool committed = false;
+  size_t bytes = 0;
+  std::vector<std::unique_ptr<PatchGeometry>> patchGeometries;  // stable user pointers
+
+  // Embree reports errors through this callback from inside its C API; throwing across it is
+  // not allowed, so the message is kept and thrown by check() once the call has returned.
+  std::mutex errorMutex;
+  std::string error;
+
+  static void onError(void* user, RTCError code, const char* message) {
+    auto* self = static_cast<Impl*>(user);
+    std::lock_guard lock(self->errorMutex);
+    if (self->error.empty())
+      self->error = fmt::format("Embree error {}: {}", int(code), message ? message : "");
+  }
+  void check(const char* what) {
+    std::lock_guard lock(errorMutex);
+    if (!error.empty()) {
+      std::string message = std::move(error);
+      error.clear();
+      fail("{}: {}", what, message);
+    }
+  }
+  void requireCommitted(const char* what) const {
+    if (!committed) fail("{}: the acceleration structure has not been committed", what);
+  }
+};
+
+Accel::Accel(const Options& options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device)
+    fail("creating the Embree device failed (error {})", int(rtcGetDeviceError(nullptr)));
+  rtcSetDeviceErrorFunction(impl_->device, &Impl::onError, impl_.get());
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneFlags(
+      impl_->scene,
+      RTCSceneFlags((options.robust ? RTC_SCENE_FLAG_ROBUST : 0) |
+                    (options.collectHits ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
+  impl_->check("creating the Embree scene");
+}
+
+Accel::~Accel() {
+  if (impl_->scene) rtcReleaseScene(impl_->scene);
+  if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
+  if (impl_->committed) fail("adding triangles: the acceleration structure is already committed");
+  mesh.validate("triangles for the acceleration structure");
+  if (mesh.triangles.empty())
+    fail("triangles for the acceleration structure: the mesh has no triangles");
+  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  impl_->check("creating a triangle geometry");
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               mesh.positions.size()));
+  auto* indices = static_cast<uint32_t*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(uint32_t), mesh.triangles.size()));
+  if (!vertices || !indices) {
+    rtcReleaseGeometry(geom);
+    impl_->check("allocating triangle buffers");
+    fail("allocating triangle buffers failed ({} vertices, {} triangles)", mesh.positions.size(),
+         mesh.triangles.size());
+  }
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) vertices[3 * i + c] = float(mesh.positions[i][c]);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) indices[3 * t + c] = mesh.triangles[t][c];
+  rtcCommitGeometry(geom);
+  const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
+  rtcReleaseGeometry(geom);
+  impl_->check("attaching a triangle geometry");
+  impl_->bytes += (mesh.positions.size() + mesh.triangles.size()) * 3 * sizeof(float);
+  return id;
+}
+
+uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
+  if (impl_->committed)
+    fail("adding quadric patches: the acceleration structure is already committed");
+  double extent = 0.0;
+  for (size_t i = 0; i < patches.size(); ++i) {
+    const Bounds3& b = patches[i].bounds;
+    if (b.empty() || !allFinite(b.lo) || !allFinite(b.hi))
+      fail("quadric patch {}: its bounds are empty or not finite", i);
+    for (int32_t side : patches[i].joins)
+      if (patches[i].isBridge() &&
+          (side < 0 || size_t(side) >= patches.size() || patches[size_t(side)].isBridge()))
+        fail("quadric patch {}: a bridge must join two patches of the same geometry, not {}", i,
+             side);
+    extent = std::max({extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
+  }
+  auto user = std::make_unique<PatchGeometry>();
+  user->patches = &patches;
+  user->margin = 1e-5 * extent;
+  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+  impl_->check("creating a user geometry");
+  rtcSetGeometryUserPrimitiveCount(geom, unsigned(patches.size()));
+  rtcSetGeometryUserData(geom, user.get());
+  rtcSetGeometryBoundsFunction(geom, &patchBounds, nullptr);
+  rtcSetGeometryIntersectFunction(geom, &intersectPatch);
+  rtcSetGeometryOccludedFunction(geom, &occludedPatch);
+  rtcCommitGeometry(geom);
+  const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
+  rtcReleaseGeometry(geom);
+  impl_->check("attaching the quadric patches");
+  impl_->patchGeometries.push_back(std::move(user));
+  impl_->bytes += patches.size() * sizeof(QuadricPatch);
+  return id;
+}
+
+void Accel::commit() {
+  rtcCommitScene(impl_->scene);
+  impl_->check("building the acceleration structure");
+  impl_->committed = true;
+}
+
+RayHit Accel::intersect(const Ray& ray) const {
+  impl_->requireCommitted("intersect");
+  TraceContext ctx;
+  rtcInitIntersectContext(&ctx.embree);
+  ctx.ray = &ray;
+  ctx.tnear = std::max(ray.tnear, 0.0);
+  ctx.patchT = ray.tfar;
+  RTCRayHit rayhit;
+  fillRay(ray, rayhit.ray);
+  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = kInvalidId;
+  rtcIntersect1(impl_->scene, &ctx.embree, &rayhit);
+  RayHit hit;
+  if (rayhit.hit.geomID == kInvalidId) return hit;
+  if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive)
+    return patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID);
+  hit.t = rayhit.ray.tfar;
+  hit.geometry = rayhit.hit.geomID;
+  hit.primitive = rayhit.hit.primID;
+  hit.u = rayhit.hit.u;
+  hit.v = rayhit.hit.v;
+  // Embree's Ng is (v1 - v0) × (v2 - v0) for triangles, the same side as faceNormal().
+  hit.geometricNormal = safeNormalized(Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
+  return hit;
+}
+
+bool Accel::occluded(const Ray& ray) const {
+  impl_->requireCommitted("occluded");
+  TraceContext ctx;
+  rtcInitIntersectContext(&ctx.embree);
+  ctx.ray = &ray;
+  ctx.tnear = std::max(ray.tnear, 0.0);
+  RTCRay r;
+  fillRay(ray, r);
+  rtcOccluded1(impl_->scene, &ctx.embree, &r);
+  return r.tfar < 0.0f;
+}
+
+void Accel::allHits(const Ray& ray, std::vector<RayHit>& hits) const {
+  impl_->requireCommitted("allHits");
+  if (!impl_->options.collectHits)
+    fail("allHits: the acceleration structure was built without collectHits");
+  TraceContext ctx;
+  rtcInitIntersectContext(&ctx.embree);
+  ctx.embree.filter = &collectTriangleHit;
+  ctx.ray = &ray;
+  ctx.tnear = std::max(ray.tnear, 0.0);
+  ctx.hits = &hits;
+  RTCRayHit rayhit;
+  fillRay(ray, rayhit.ray);
+  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = kInvalidId;
+  rtcIntersect1(impl_->scene, &ctx.embree, &rayhit);
+}
+
+size_t Accel::geometryBytes() const {
+  return impl_->bytes;
+}
+
+Bounds3 Accel::bounds() const {
+  impl_->requireCommitted("bounds");
+  RTCBounds b;
+  rtcGetSceneBounds(impl_->scene, &b);
+  Bounds3 out;
+  if (b.lower_x <= b.upper_x) {
+    out.extend(Vec3(b.lower_x, b.lower_y, b.lower_z));
+    out.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
+  }
+  return out;
+}
+
+bool Accel::robust() const {
+  return impl_->options.robust;
+}
+
+void enableFlushToZero() {
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+}  // namespace quadtri

@@ -1,0 +1,75 @@
+// The ray-tracing acceleration structure: Embree 3 with native triangles and quadric patches as
+// user geometry. Shared by the renderer and the crack-rate analysis.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "quadtri/math/vec.h"
+#include "quadtri/mesh/triangle_mesh.h"
+#include "quadtri/surface/quadric_patch.h"
+
+namespace quadtri {
+
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;
+  double tnear = 0.0;
+  double tfar = kInfinity;
+};
+
+/// What a ray hit: which geometry (the id returned when it was added), which primitive, where.
+struct RayHit {
+  double t = kInfinity;
+  uint32_t geometry = ~0u;
+  uint32_t primitive = ~0u;
+  double u = 0, v = 0;                  ///< barycentric coordinates of the hit (triangles)
+  Vec3 geometricNormal = Vec3::Zero();  ///< unit, not flipped towards the ray (zero: no hit)
+  bool valid() const { return geometry != ~0u; }
+};
+
+/// An Embree device and scene, committed once all geometry is added.
+class Accel {
+ public:
+  struct Options {
+    bool robust = false;  ///< RTC_SCENE_FLAG_ROBUST: watertight traversal (crack-rate analysis)
+    bool collectHits = false;  ///< enables allHits() (an Embree context filter function)
+  };
+  explicit Accel(const Options& options);
+  Accel() : Accel(Options{}) {}
+  ~Accel();
+  Accel(const Accel&) = delete;
+  Accel& operator=(const Accel&) = delete;
+
+  /// Adds a triangle mesh (copied into float buffers); returns its geometry id.
+  uint32_t addTriangles(const TriangleMesh& mesh);
+  /// Adds quadric patches as one Embree user geometry with a bound per patch; the patches are
+  /// referenced, not copied, and must outlive the Accel. Returns its geometry id.
+  uint32_t addQuadricPatches(const std::vector<QuadricPatch>& patches);
+  void commit();
+
+  /// Nearest hit in (ray.tnear, ray.tfar), or an invalid RayHit.
+  RayHit intersect(const Ray& ray) const;
+  /// True when anything is hit in (ray.tnear, ray.tfar).
+  bool occluded(const Ray& ray) const;
+  /// Every hit in (ray.tnear, ray.tfar), unordered, appended to `hits`: each candidate Embree
+  /// finds is recorded and rejected, so none hides another. Needs Options.collectHits.
+  void allHits(const Ray& ray, std::vector<RayHit>& hits) const;
+
+  /// Bytes of geometry buffers and patch records handed to Embree.
+  size_t geometryBytes() const;
+  /// Bounds of everything added, as Embree holds it (floats, patch bounds slightly inflated).
+  Bounds3 bounds() const;
+  bool robust() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Sets flush-to-zero and denormals-are-zero for the calling thread, as Embree asks of every
+/// thread that traces rays.
+void enableFlushToZero();
+
+}  // namespace quadtri

@@ -1,0 +1,42 @@
+// The render geometry of a surface model: what the renderer and the crack-rate analysis trace.
+#pragma once
+
+#include <vector>
+
+#include "quadtri/mesh/triangle_mesh.h"
+#include "quadtri/geometry/accel.h"
+#include "quadtri/surface/model.h"
+#include "quadtri/surface/quadric_patch.h"
+#include "quadtri/surface/tessellate.h"
+
+namespace quadtri {
+
+/// A model as render primitives: triangles (its mesh, or its tessellation) or quadric patches.
+struct ModelGeometry {
+  TriangleMesh triangles;                              ///< empty for Implicit models
+  const std::vector<QuadricPatch>* patches = nullptr;  ///< renderPatches(), for Implicit models
+  bool shadingNormals = false;  ///< the triangles are rendered with their vertex normals
+  bool liftRayOrigins = false;  ///< SurfaceModel::liftsRayOrigins() (shading-offset)
+  size_t patchBytes = 0;        ///< SurfaceModel::patchMemoryBytes() for Implicit models
+
+  /// Triangles or patches handed to Embree.
+  size_t primitiveCount() const;
+  /// Bytes of render geometry: float3 positions and uint3 indices as Embree gets them, plus
+  /// float3 normals (and their uint3 indices when they are not the position indices) when
+  /// rendered with them; or the patch records.
+  size_t bytes() const;
+};
+
+/// InputTriangles → the mesh; Tessellated → tessellate(model, tessellation); Implicit → the
+/// model's render patches (referenced: the model must outlive the result).
+ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tessellation);
+
+/// Adds the geometry to `accel` (one triangle geometry or one user geometry); returns its id.
+/// The patches are referenced, so `geometry`'s model must outlive `accel`.
+uint32_t addModelGeometry(Accel& accel, const ModelGeometry& geometry);
+
+/// Shorthand for addModelGeometry(accel, modelGeometry(model, tessellation)).
+uint32_t addModelGeometry(Accel& accel, const SurfaceModel& model,
+                          const Tessellation& tessellation);
+
+}  // namespace quadtri

@@ -1,0 +1,57 @@
+#include "quadtri/geometry/model_geometry.h"
+
+#include "quadtri/math/error.h"
+
+namespace quadtri {
+
+size_t ModelGeometry::primitiveCount() const {
+  return patches ? patches->size() : triangles.triangleCount();
+}
+
+size_t ModelGeometry::bytes() const {
+  if (patches) return patchBytes;
+  constexpr size_t kTriple = 3 * sizeof(float);
+  size_t total = (triangles.positions.size() + triangles.triangles.size()) * kTriple;
+  if (shadingNormals && triangles.hasNormals()) {
+    total += triangles.normals.size() * kTriple;
+    if (triangles.normalIndices != triangles.triangles)
+      total += triangles.normalIndices.size() * kTriple;
+  }
+  return total;
+}
+
+ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tessellation) {
+  ModelGeometry g;
+  switch (model.representation()) {
+    case Representation::InputTriangles:
+      g.triangles = model.mesh();
+      g.shadingNormals = model.interpolatesShadingNormals();
+      g.liftRayOrigins = g.shadingNormals && model.liftsRayOrigins();
+      break;
+    case Representation::Tessellated:
+      g.triangles = tessellate(model, tessellation);
+      g.shadingNormals = true;
+      break;
+    case Representation::Implicit:
+      g.patches = &model.renderPatches();
+      g.patchBytes = model.patchMemoryBytes();
+      if (model.quadricPatches().size() != model.patchCount() ||
+          g.patches->size() < model.patchCount())
+        fail("model '{}': {} quadric patches for {} triangles", model.name(),
+             model.quadricPatches().size(), model.patchCount());
+      break;
+  }
+  return g;
+}
+
+uint32_t addModelGeometry(Accel& accel, const ModelGeometry& geometry) {
+  return geometry.patches ? accel.addQuadricPatches(*geometry.patches)
+                          : accel.addTriangles(geometry.triangles);
+}
+
+uint32_t addModelGeometry(Accel& accel, const SurfaceModel& model,
+                          const Tessellation& tessellation) {
+  return addModelGeometry(accel, modelGeometry(model, tessellation));
+}
+
+}  // namespace quadtri

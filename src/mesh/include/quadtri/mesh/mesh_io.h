@@ -1,0 +1,32 @@
+// Mesh import (OBJ, PLY, STL, OFF through Assimp) and export (OBJ, PLY with normals).
+#pragma once
+
+#include <filesystem>
+
+#include "quadtri/mesh/normals.h"
+#include "quadtri/mesh/triangle_mesh.h"
+
+namespace quadtri {
+
+/// Loads every mesh in the file as one triangle mesh. Positions are welded by exact equality
+/// so adjacency is known; per-corner normals are kept as the file gives them (STL facet
+/// normals are not shading normals and are ignored). When the file has no normals, or `source`
+/// is not File, vertex normals are computed. Throws Error naming the file on failure.
+TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source = NormalSource::File);
+
+/// Writes OBJ or PLY (binary little-endian) by extension, with normals when the mesh has them.
+/// The file appears atomically.
+void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path);
+
+}  // namespace quadtri
+
+#include "quadtri/mesh/shapes.h"
+
+namespace quadtri {
+
+/// A mesh named on the command line: an existing file, or a built-in shape spec such as
+/// `icosphere:3` (shapes.h). For a file, `source` picks the normals; for a built-in shape,
+/// File keeps its analytic normals and Average/Angle recompute them.
+BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source = NormalSource::File);
+
+}  // namespace quadtri

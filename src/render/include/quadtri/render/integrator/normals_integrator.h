@@ -1,0 +1,16 @@
+// The `normals` integrator of the thesis' constraint figures.
+#pragma once
+
+#include "quadtri/render/integrator/integrator.h"
+
+namespace quadtri {
+
+/// The shading normal at the first hit as a colour, 0.5·(n + 1) per axis; black on a miss.
+class NormalsIntegrator final : public Integrator {
+ public:
+  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
+                 uint64_t& rays) const override;
+  std::string toString() const override { return "normals"; }
+};
+
+}  // namespace quadtri

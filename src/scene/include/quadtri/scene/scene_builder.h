@@ -1,0 +1,31 @@
+// Turns a validated SceneDescription into the objects that render it.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "quadtri/render/integrator/integrator.h"
+#include "quadtri/render/render_scene.h"
+#include "quadtri/render/renderer.h"
+#include "quadtri/scene/scene_description.h"
+
+namespace quadtri {
+
+/// A scene ready to render, with the integrator and the sampler/film settings it asked for.
+struct BuiltScene {
+  std::unique_ptr<RenderScene> scene;
+  std::shared_ptr<const Integrator> integrator;
+  RenderOptions options;      ///< samplesPerPixel, seed and filter from the description
+  size_t inputTriangles = 0;  ///< triangles of the obj/ply meshes before any model
+};
+
+/// Builds every shape, BSDF and emitter. obj/ply meshes are loaded, placed by to_world
+/// (positions by the matrix, normals by its inverse transpose; a mirroring matrix reverses the
+/// winding so the face normals keep agreeing with the shading normals) and converted by their
+/// model, or by `modelOverride` when given; rectangles and cubes are `flat` triangle meshes;
+/// spheres are analytic quadrics. Errors name the XML element's FILE:LINE.
+BuiltScene buildScene(const SceneDescription& description,
+                      const std::optional<std::string>& modelOverride = std::nullopt);
+
+}  // namespace quadtri

@@ -1,0 +1,57 @@
+// Quadratic edge curves shared by neighbouring patches (thesis §4.1, eq. 4.4-4.5).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "quadtri/mesh/triangle_mesh.h"
+
+namespace quadtri {
+
+/// True when the edge's ends (vi, ni) and (vj, nj) should be swapped into the canonical order
+/// (lexicographic on positions, then normals), so a formula symmetric in the two ends gives
+/// the same bits whichever side of the edge evaluates it.
+bool edgeEndsSwapped(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj);
+
+/// Control point b of the quadratic Bézier edge (1-t)² vi + 2t(1-t) b + t² vj: the intersection
+/// of the tangent plane at vi (normal ni), the tangent plane at vj (normal nj) and the thesis'
+/// edge plane (eq. 4.5: through vi, normal (vj-vi)×(m+nm-vi)). This is the closed form of the
+/// thesis' 27×27 (§4.1) and 18×18 (§4.2) systems, which decouple into one 3×3 system per edge.
+///
+/// The solve is symmetric in (i, j) bit for bit, so both patches of an edge get the same point.
+/// Where the tangent planes are (nearly) parallel the system is singular: a damped
+/// pseudo-inverse drives the offset from the chord midpoint smoothly to the straight edge, and
+/// the offset is bounded by the edge length so inconsistent normals cannot fling it away.
+Vec3 edgeControlPoint(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj);
+
+/// Control points of every triangle's edges: result[t][k] belongs to local edge k (corners k
+/// and (k+1)%3). Each mesh edge is solved once, from normals both sides share: at each endpoint
+/// the normalised mean of the corner normals that the edge's triangles have there, which is the
+/// corner normal itself unless the file splits normals at that vertex (a crease).
+std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh);
+
+/// The quadratic Bézier triangle with corners v[k] and edge control points b[k] (edge k joins
+/// corners k and k+1), in barycentric (u, v) with corner 0 at (0,0), 1 at (1,0), 2 at (0,1).
+/// This is the thesis' §4.2 parametric quadric triangle
+/// f(u,v) = u² c5 + v² c4 + uv c3 + u c2 + v c1 + c0.
+struct QuadraticPatch {
+  std::array<Vec3, 3> v;
+  std::array<Vec3, 3> b;
+
+  /// The thesis' coefficients c0..c5 (eq. 4.6).
+  std::array<Vec3, 6> coefficients() const;
+  Vec3 position(double u, double w) const;
+  /// ∂f/∂u and ∂f/∂v at (u, v).
+  void derivatives(double u, double w, Vec3& du, Vec3& dv) const;
+  /// Point on edge k at parameter t from corner k to corner k+1.
+  Vec3 edgePoint(int k, double t) const;
+};
+
+/// The patch of triangle t, with control points from `controlPoints` (edgeControlPoints).
+QuadraticPatch quadraticPatch(const TriangleMesh& mesh,
+                              const std::vector<std::array<Vec3, 3>>& controlPoints, size_t t);
+
+/// +1 or -1: the sign that orients (p_u × p_v) of triangle t towards its shading normals.
+double patchOrientation(const TriangleMesh& mesh, size_t t);
+
+}  // namespace quadtri

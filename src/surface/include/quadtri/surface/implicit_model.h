@@ -1,0 +1,44 @@
+// `quadric-implicit`: the thesis' implicit quadric triangle (§4.3), rendered by direct ray–quadric
+// intersection.
+#pragma once
+
+#include <vector>
+
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/model.h"
+#include "quadtri/surface/quadric_patch.h"
+
+namespace quadtri {
+
+/// Each triangle becomes the quadric f_i = 0 fitted by the thesis' least squares to its §4.2
+/// parametric patch f_p (implicit_fit.h), clipped by the thesis' four planes and by an
+/// axis-aligned box. The thesis had no box; here it is the box of the patch's own surface: the
+/// 45 points of a triangular lattice of f_p with 8 steps per side, projected onto the quadric
+/// along f_p's normal (only those inside the planes), plus the triangle's corners, inflated by
+/// 5% of the triangle's longest edge so the sheet between samples stays inside.
+class ImplicitModel final : public SurfaceModel {
+ public:
+  explicit ImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
+  std::string_view name() const override { return "quadric-implicit"; }
+  /// f_p(u,v) moved along f_p's unit normal to the nearest root of the ray–quadric equation,
+  /// with the quadric's unit gradient oriented to the shading normals. Where no root lies
+  /// within one longest edge of f_p(u,v) (the quadric misses that part of the patch), f_p(u,v)
+  /// itself with f_p's normal is returned.
+  SurfacePoint evaluate(size_t t, double u, double v) const override;
+  Representation representation() const override { return Representation::Implicit; }
+  const std::vector<QuadricPatch>& quadricPatches() const override { return patches_; }
+  size_t patchMemoryBytes() const override { return sizeof(QuadricPatch) * patches_.size(); }
+  /// {"quadric": [A..J], "planes": [[nx,ny,nz,d], ...], "bounds": {"min", "max"},
+  ///  "parametric": {"c": [c0..c5]}, "control_points": [b01, b12, b20]}.
+  nlohmann::json patchJson(size_t t) const override;
+
+  /// The §4.2 parametric patch f_p that patch t was fitted to.
+  const QuadraticPatch& parametricPatch(size_t t) const { return parametric_[t]; }
+
+ private:
+  std::vector<QuadraticPatch> parametric_;
+  std::vector<double> parametricOrientation_;  ///< patchOrientation() of each triangle
+  std::vector<QuadricPatch> patches_;
+};
+
+}  // namespace quadtri

@@ -1,0 +1,44 @@
+// What the local-interpolation models (phong, pn, nagata) share: each patch is built from one
+// triangle's corners and corner normals alone.
+#pragma once
+
+#include <array>
+#include <nlohmann/json_fwd.hpp>
+
+#include "quadtri/mesh/triangle_mesh.h"
+
+namespace quadtri {
+
+/// The corners and unit corner normals of one triangle, the only input of a local patch.
+struct LocalTriangle {
+  std::array<Vec3, 3> p;
+  std::array<Vec3, 3> n;
+};
+
+/// Triangle t's corners and its corner normals, renormalised so formulas that assume unit
+/// normals (tangent-plane projections, PN's w_ij) hold to round-off.
+LocalTriangle localTriangle(const TriangleMesh& mesh, size_t t);
+
+/// True when every mesh edge's triangles carry the same normal at each of its endpoints. A local
+/// patch's boundary curve depends only on its edge's two corners and their normals, so then
+/// neighbours share their boundaries (C0); where a file splits normals (a crease) they do not.
+bool edgesShareNormals(const TriangleMesh& mesh);
+
+/// The unit geometric normal ±(du × dv)/|du × dv| of patch t, signed like patchOrientation so
+/// it lies on the side of the shading normals. Where du × dv vanishes (a degenerate triangle)
+/// it falls back to the barycentric blend of the corner normals (u, v), then the face normal.
+Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v, const Vec3& du,
+                         const Vec3& dv);
+
+/// [x, y, z] for patch JSON.
+nlohmann::json vecJson(const Vec3& v);
+
+struct QuadraticPatch;
+struct QuadricPatch;
+/// {"vertices", "control_points": {b01, b12, b20}, "coefficients": {c0..c5}} of a quadratic
+/// Bézier patch (the thesis' §4.2 parametric triangle), shared by every model built on one.
+nlohmann::json quadraticPatchJson(const QuadraticPatch& patch);
+/// {"quadric": [A..J], "planes": [[nx, ny, nz, d]...], "bounds": {min, max}, "orientation"}.
+nlohmann::json quadricPatchJson(const QuadricPatch& patch);
+
+}  // namespace quadtri

@@ -1,0 +1,78 @@
+// One interface for every way of turning a triangle mesh into render primitives (DESIGN.md §3).
+#pragma once
+
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "quadtri/mesh/triangle_mesh.h"
+
+namespace quadtri {
+
+struct QuadricPatch;
+
+/// A point on a model's surface with its unit geometric normal, oriented to the side of the
+/// mesh's shading normals.
+struct SurfacePoint {
+  Vec3 position;
+  Vec3 normal;
+};
+
+/// How the renderer and the crack-rate analysis draw a model.
+enum class Representation {
+  InputTriangles,  ///< the mesh's own triangles (flat, shading, shading-offset)
+  Tessellated,     ///< a triangle lattice evaluated on each patch (tessellate.h)
+  Implicit,        ///< quadric patches intersected directly (quadric_patch.h)
+};
+
+/// A mesh converted by one model. Patch t corresponds to triangle t of the mesh and is
+/// parametrised by barycentric (u, v): (0,0) is corner 0, (1,0) corner 1, (0,1) corner 2.
+class SurfaceModel {
+ public:
+  explicit SurfaceModel(std::shared_ptr<const TriangleMesh> mesh) : mesh_(std::move(mesh)) {}
+  virtual ~SurfaceModel() = default;
+  SurfaceModel(const SurfaceModel&) = delete;
+  SurfaceModel& operator=(const SurfaceModel&) = delete;
+
+  virtual std::string_view name() const = 0;
+  const TriangleMesh& mesh() const { return *mesh_; }
+  const std::shared_ptr<const TriangleMesh>& meshPtr() const { return mesh_; }
+  size_t patchCount() const { return mesh_->triangleCount(); }
+
+  /// Position and unit geometric normal of patch t at barycentric (u, v).
+  virtual SurfacePoint evaluate(size_t t, double u, double v) const = 0;
+
+  virtual Representation representation() const { return Representation::Tessellated; }
+  /// True when neighbouring patches share their boundary curves, so a tessellation may weld
+  /// boundary vertices (false only for reproductions that are known to crack).
+  virtual bool sharesEdges() const { return true; }
+  /// For InputTriangles: whether the renderer interpolates the mesh's shading normals.
+  virtual bool interpolatesShadingNormals() const { return false; }
+  /// For InputTriangles: whether rays leaving towards the shading normal's side start from the
+  /// shadow-terminator offset point (shading_offset.h) instead of the hit.
+  virtual bool liftsRayOrigins() const { return false; }
+  /// Implicit models: their quadric patches, one per triangle; empty otherwise.
+  virtual const std::vector<QuadricPatch>& quadricPatches() const;
+  /// Implicit models: what the renderer and the crack-rate analysis trace, the patches first
+  /// (index t is patch t) and then any extra primitives that join them (edge bridges, see
+  /// QuadricPatch::joins). The patches alone by default.
+  virtual const std::vector<QuadricPatch>& renderPatches() const { return quadricPatches(); }
+  /// Bytes of the model's own patch records (0 when it renders tessellated triangles).
+  virtual size_t patchMemoryBytes() const { return 0; }
+  /// The data of patch t for `quadtri convert --json` (see README, "Patch JSON").
+  virtual nlohmann::json patchJson(size_t t) const = 0;
+
+ private:
+  std::shared_ptr<const TriangleMesh> mesh_;
+};
+
+/// Every model name, in the order `--model all` lists them.
+const std::vector<std::string>& modelNames();
+
+/// Converts `mesh` with the named model; throws Error listing the valid names otherwise.
+std::unique_ptr<SurfaceModel> makeModel(std::string_view name,
+                                        std::shared_ptr<const TriangleMesh> mesh);
+
+}  // namespace quadtri

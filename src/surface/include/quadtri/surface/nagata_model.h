@@ -1,0 +1,56 @@
+// `nagata`: quadratic patches from Nagata, "Simple local interpolation of surfaces using
+// normal vectors", CAGD 22 (2005) 327–347.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/model.h"
+
+namespace quadtri {
+
+/// Nagata's curvature coefficient of the edge x0 → x1 with unit normals n0, n1: the vector c
+/// of the quadratic x(t) = x0 + (Δx − c) t + c t², Δx = x1 − x0, whose end tangents lie in the
+/// tangent planes (n0·x'(0) = 0, n1·x'(1) = 0) with the least |c|. In the paper's notation
+/// v = (n0 + n1)/2, Δv = (n0 − n1)/2, Δc = n0·Δv, c = 1 − 2Δc = n0·n1:
+///   c = [⟨Δx, Δv⟩ / (1 − Δc)] v + [⟨Δx, v⟩ / Δc] Δv   (c ≠ ±1),   c = 0   (c = ±1).
+/// The paper's zero rule for parallel or opposite normals is applied within 0.1°
+/// (|n0·n1| ≥ cos 0.1°) so round-off cannot be amplified by the vanishing denominators. Near
+/// (but beyond) opposite normals the coefficient still grows like 1/|v|, as published; Neto et
+/// al. (CAD 45, 2013) discuss this limitation. Symmetric: swapping the ends gives the same c.
+Vec3 nagataCurvature(const Vec3& x0, const Vec3& n0, const Vec3& x1, const Vec3& n1);
+
+/// Nagata's patch x(η,ζ) = x00 + (x10 − x00 − c1) η + (x11 − x10 + c1 − c3) ζ + (c3 − c1 − c2) ηζ
+/// + c1 η² + c2 ζ² on 0 ≤ ζ ≤ η ≤ 1 is the quadratic Bézier triangle over the same corners
+/// whose edge control points are the chord midpoints minus c/2 (with barycentrics 1 − η, η − ζ,
+/// ζ). It is stored as that QuadraticPatch, in quadtri's (u, v).
+///
+/// Like the thesis' edgeControlPoint, Nagata's control point lies on both end tangent planes,
+/// i.e. on the line where they meet; Nagata takes the point of that line nearest the chord
+/// midpoint (c ∈ span(n0, n1)), the thesis the point on its edge plane. They coincide where the
+/// normals are symmetric about the edge (a sphere) and differ elsewhere.
+///
+/// Corners are interpolated and the corner tangent planes are the vertex tangent planes, so the
+/// geometric normal there is the vertex normal (except on edges the zero rule flattens). Each
+/// boundary depends only on its edge's corners and normals: C0 where the mesh shares normals,
+/// cracks at split normals (sharesEdges() is false on such a mesh).
+class NagataModel final : public SurfaceModel {
+ public:
+  explicit NagataModel(std::shared_ptr<const TriangleMesh> mesh);
+  std::string_view name() const override { return "nagata"; }
+  SurfacePoint evaluate(size_t t, double u, double v) const override;
+  bool sharesEdges() const override { return sharesEdges_; }
+  nlohmann::json patchJson(size_t t) const override;
+
+  /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).
+  const Vec3& curvature(size_t t, int k) const { return curvatures_[t][k]; }
+  const QuadraticPatch& patch(size_t t) const { return patches_[t]; }
+
+ private:
+  std::vector<std::array<Vec3, 3>> curvatures_;
+  std::vector<QuadraticPatch> patches_;
+  bool sharesEdges_;
+};
+
+}  // namespace quadtri

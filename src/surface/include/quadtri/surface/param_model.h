@@ -1,0 +1,33 @@
+// `quadric-param`: the thesis' parametric quadric triangle (§4.2).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/model.h"
+
+namespace quadtri {
+
+/// Each triangle becomes the quadratic Bézier triangle f(u,v) = u²c5 + v²c4 + uv c3 + u c2 +
+/// v c1 + c0 whose edge control points are the closed-form solution of the thesis' 18×18
+/// system (eq. 4.7-4.9, see edge_curves.h). Shared edges get the same control point, so the
+/// patches meet without cracks (C0); the normal is (p_u × p_v)/|p_u × p_v|.
+///
+/// patchJson(t): {"vertices": [v0, v1, v2], "control_points": {"b01", "b12", "b20"},
+/// "coefficients": {"c0", ..., "c5"}}, every point an [x, y, z] array.
+class ParamModel final : public SurfaceModel {
+ public:
+  explicit ParamModel(std::shared_ptr<const TriangleMesh> mesh);
+  std::string_view name() const override { return "quadric-param"; }
+  SurfacePoint evaluate(size_t t, double u, double v) const override;
+  nlohmann::json patchJson(size_t t) const override;
+
+  /// The quadratic Bézier triangle of triangle t.
+  QuadraticPatch patch(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }
+
+ private:
+  std::vector<std::array<Vec3, 3>> controlPoints_;
+};
+
+}  // namespace quadtri

@@ -1,0 +1,58 @@
+// `pn`: curved PN triangles (Vlachos, Peters, Boyd and Mitchell, I3D 2001).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "quadtri/surface/model.h"
+
+namespace quadtri {
+
+/// One PN triangle: the cubic Bézier geometry b(λ) = Σ_{i+j+k=3} 3!/(i!j!k!) λ0^i λ1^j λ2^k b_ijk
+/// and the quadratic normal field n(λ) = Σ_{i+j+k=2} n_ijk λ0^i λ1^j λ2^k (the paper's
+/// n200 w² + n110 wu + ..., no binomial factors), indices counting powers of (λ0, λ1, λ2).
+struct PnPatch {
+  /// b[i][j] = b_{i,j,3−i−j}.
+  std::array<std::array<Vec3, 4>, 4> b;
+  /// n[i][j] = n_{i,j,2−i−j}.
+  std::array<std::array<Vec3, 3>, 3> n;
+
+  /// The paper's coefficients from corners p and unit normals nrm: edge points
+  /// b_ij = (2p_i + p_j − w_ij n_i)/3 with w_ij = (p_j − p_i)·n_i; centre b111 = E + (E − V)/2
+  /// (E the mean of the six edge points, V the centroid); n_ii = n_i; the edge normal n_ij is
+  /// n_i + n_j − v_ij (p_j − p_i) normalised, v_ij = 2 (p_j − p_i)·(n_i + n_j) / |p_j − p_i|²,
+  /// the mirror image of n_i + n_j in the plane normal to the edge.
+  static PnPatch fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm);
+
+  Vec3 position(double u, double v) const;
+  /// ∂b/∂u and ∂b/∂v: 3 Σ_{i+j+k=2} B²_ijk(λ) (b_{i,j+1,k} − b_{i+1,j,k}) and likewise for v.
+  void derivatives(double u, double v, Vec3& du, Vec3& dv) const;
+  /// The quadratic normal field at (u, v), not normalised.
+  Vec3 normalField(double u, double v) const;
+};
+
+/// Curved PN triangles. evaluate() returns the cubic's geometric normal, so analysis measures
+/// the geometry; the paper's own quadratic normal field, which a PN renderer shades with, is
+/// pnNormal(). Each cubic boundary depends only on its edge's two corners and normals, so
+/// neighbours share edges (C0) where the mesh shares normals; split normals crack
+/// (sharesEdges() is false on such a mesh). The corner tangent planes are the vertex tangent
+/// planes, so the geometric normal at each corner is the vertex normal.
+class PnModel final : public SurfaceModel {
+ public:
+  explicit PnModel(std::shared_ptr<const TriangleMesh> mesh);
+  std::string_view name() const override { return "pn"; }
+  SurfacePoint evaluate(size_t t, double u, double v) const override;
+  bool sharesEdges() const override { return sharesEdges_; }
+  nlohmann::json patchJson(size_t t) const override;
+
+  /// The paper's quadratic normal field of patch t at (u, v), normalised (falls back to the
+  /// geometric normal where the field vanishes).
+  Vec3 pnNormal(size_t t, double u, double v) const;
+  const PnPatch& patch(size_t t) const { return patches_[t]; }
+
+ private:
+  std::vector<PnPatch> patches_;
+  bool sharesEdges_;
+};
+
+}  // namespace quadtri

@@ -1,0 +1,86 @@
+// An implicit quadric clipped by planes: the render primitive of the implicit models.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "quadtri/math/vec.h"
+
+namespace quadtri {
+
+/// Coefficients A..J of A x² + B y² + C z² + D xy + E xz + F yz + G x + H y + I z + J = 0.
+using QuadricCoeffs = std::array<double, 10>;
+
+double evalQuadric(const QuadricCoeffs& q, const Vec3& p);
+Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p);
+
+/// A patch of the quadric q = 0 kept where every clip plane's (n·x + d) is >= 0, inside
+/// `bounds`. `orientation` (+1 or -1) turns the gradient into the normal on the side of the
+/// mesh's shading normals.
+struct QuadricPatch {
+  static constexpr int kMaxPlanes = 6;
+  QuadricCoeffs q{};
+  /// (n, d) with inside n·x + d >= 0 (Eigen leaves `{}` uninitialised: zero them explicitly).
+  std::array<Vec4, kMaxPlanes> planes = [] {
+    std::array<Vec4, kMaxPlanes> zero;
+    zero.fill(Vec4::Zero());
+    return zero;
+  }();
+  int planeCount = 0;
+  Bounds3 bounds;
+  double orientation = 1.0;
+  /// For an edge bridge: the indices (in the same primitive array) of the two patches it joins;
+  /// -1 for an ordinary patch. A bridge's q is the shared edge plane (linear, gradient into the
+  /// first patch's side) and the bridge is the part of that plane, inside its clip planes and
+  /// bounds, where the two patches disagree about inside and outside: the sliver between the
+  /// conics in which their quadrics meet the plane. With it, neighbouring patches that do not
+  /// meet exactly still bound a closed solid.
+  std::array<int32_t, 2> joins{-1, -1};
+  /// Where non-zero, only the sheet facing this way is kept: points where the oriented gradient
+  /// has a positive component along it (one sheet of a quadric that folds back within the
+  /// clip planes, such as a thin hyperboloid hugging its triangle).
+  Vec3 facing = Vec3::Zero();
+
+  bool isBridge() const { return joins[0] >= 0; }
+
+  bool inside(const Vec3& p) const {
+    for (int i = 0; i < planeCount; ++i)
+      if (planes[i].head<3>().dot(p) + planes[i][3] < 0.0) return false;
+    return true;
+  }
+};
+
+/// Nearest hit of the ray o + t d with the clipped patch for t in (tmin, tmax); the roots of the
+/// quadratic are computed stably in double precision and each is tested against the planes
+/// and the bounds. Returns false when there is none.
+bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double tmin,
+                           double tmax, double& tHit);
+
+/// True where p lies inside the solid that patch bounds: orientation·q(p) < 0 (the oriented
+/// gradient points outward). With a `facing` direction, only the kept sheet counts: p is inside
+/// when the line from p along `facing` crosses the kept sheet (the root where orientation·q
+/// increases) ahead of p, so the sheet the patch drops changes nothing.
+bool insideQuadric(const QuadricPatch& patch, const Vec3& p);
+
+/// True where the bridge `bridge` of `primitives` exists at p (a point of its plane): the two
+/// patches it joins disagree about p's side.
+bool bridgeCovers(const std::vector<QuadricPatch>& primitives, const QuadricPatch& bridge,
+                  const Vec3& p);
+
+/// intersectQuadricPatch for primitive `index` of `primitives`, bridges included.
+bool intersectPrimitive(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& o,
+                        const Vec3& d, double tmin, double tmax, double& tHit);
+
+/// Unit outward normal of primitive `index` at p: the oriented gradient of a patch; for a bridge
+/// its plane's normal, pointing from the side inside the solid to the side outside. Zero where
+/// the gradient vanishes.
+Vec3 primitiveNormal(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& p);
+
+/// The normal to shade primitive `index` with at p: primitiveNormal for a patch; for a bridge
+/// (a sliver across an edge) the normalised mean of the two joined patches' normals, so the
+/// sliver shades like the surface around it.
+Vec3 primitiveShadingNormal(const std::vector<QuadricPatch>& primitives, size_t index,
+                            const Vec3& p);
+
+}  // namespace quadtri

@@ -1,0 +1,226 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "fixtures/sphere_patches.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/geometry/accel.h"
+#include "quadtri/geometry/rng.h"
+
+namespace quadtri {
+namespace {
+
+Vec3 uniformDirection(Pcg32& rng) {
+  const double z = 1.0 - 2.0 * rng.nextDouble(), phi = 2.0 * kPi * rng.nextDouble();
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+TriangleMesh icosphere(int level) {
+  ShapeParams p;
+  p.level = level;
+  return makeBuiltin("icosphere", p).mesh;
+}
+
+using fixtures::spherePatches;
+
+TEST(Accel, TriangleHitAtAnalyticT) {
+  enableFlushToZero();
+  TriangleMesh mesh;
+  mesh.positions = {Vec3(-1, -1, 2), Vec3(3, -1, 2), Vec3(-1, 3, 2)};
+  mesh.triangles = {{0, 1, 2}};
+  Accel accel;
+  const uint32_t id = accel.addTriangles(mesh);
+  accel.commit();
+  EXPECT_EQ(accel.geometryBytes(), size_t(4 * 12));
+  Pcg32 rng(7);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 origin(rng.nextDouble() - 0.5, rng.nextDouble() - 0.5, -rng.nextDouble());
+    double b1 = rng.nextDouble(), b2 = rng.nextDouble();
+    if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+    const Vec3 target =
+        (1 - b1 - b2) * mesh.positions[0] + b1 * mesh.positions[1] + b2 * mesh.positions[2];
+    const double distance = (target - origin).norm();
+    const Ray ray{origin, (target - origin) / distance};
+    const RayHit hit = accel.intersect(ray);
+    ASSERT_TRUE(hit.valid());
+    EXPECT_EQ(hit.geometry, id);
+    EXPECT_EQ(hit.primitive, 0u);
+    EXPECT_NEAR(hit.t, distance, 1e-6 * distance);
+    EXPECT_NEAR(hit.u, b1, 1e-5);
+    EXPECT_NEAR(hit.v, b2, 1e-5);
+    EXPECT_NEAR((hit.geometricNormal - Vec3(0, 0, 1)).norm(), 0.0, 1e-7);
+    EXPECT_FALSE(accel.occluded({ray.origin, ray.direction, 0.0, 0.99 * distance}));
+    EXPECT_TRUE(accel.occluded({ray.origin, ray.direction, 0.0, 1.01 * distance}));
+    EXPECT_FALSE(accel.intersect({ray.origin, -ray.direction}).valid());
+  }
+}
+
+TEST(Accel, RobustRaysThroughSharedEdgesAndVerticesNeverMiss) {
+  enableFlushToZero();
+  for (int level = 0; level <= 3; ++level) {
+    const TriangleMesh mesh = icosphere(level);
+    Accel accel(Accel::Options{true, false});
+    accel.addTriangles(mesh);
+    accel.commit();
+    std::vector<Vec3> targets = mesh.positions;
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k)
+        for (const double s : {0.5, 1.0 / 3.0, 1e-4})
+          targets.push_back((1 - s) * mesh.corner(t, k) + s * mesh.corner(t, (k + 1) % 3));
+    size_t missed = 0;
+    for (const Vec3& target : targets) {
+      const RayHit hit = accel.intersect({Vec3::Zero(), target.normalized()});
+      if (!hit.valid())
+        ++missed;
+      else
+        EXPECT_NEAR(hit.t, target.norm(), 1e-6) << "level " << level;
+    }
+    EXPECT_EQ(missed, 0u) << "level " << level << ", " << targets.size() << " rays";
+  }
+}
+
+TEST(Accel, QuadricSpherePatchesHitAtUnitDistanceWithRadialNormal) {
+  enableFlushToZero();
+  const std::vector<QuadricPatch> patches = spherePatches();
+  Accel accel;
+  const uint32_t id = accel.addQuadricPatches(patches);
+  accel.commit();
+  EXPECT_EQ(accel.geometryBytes(), patches.size() * sizeof(QuadricPatch));
+  Pcg32 rng(11);
+  std::vector<Vec3> directions;
+  for (int i = 0; i < 5000; ++i) directions.push_back(uniformDirection(rng));
+  // Patch boundaries: the icosahedron's vertices and points of its edges, on the sphere.
+  const TriangleMesh ico = makeBuiltin("icosahedron").mesh;
+  for (size_t t = 0; t < ico.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k)
+      for (const double s : {0.0, 0.5, 0.25})
+        directions.push_back(
+            ((1 - s) * ico.corner(t, k) + s * ico.corner(t, (k + 1) % 3)).normalized());
+  for (const Vec3& d : directions) {
+    const RayHit hit = accel.intersect({Vec3::Zero(), d});
+    ASSERT_TRUE(hit.valid()) << d.transpose();
+    EXPECT_EQ(hit.geometry, id);
+    EXPECT_NEAR(hit.t, 1.0, 1e-9);
+    EXPECT_NEAR((hit.geometricNormal - d).norm(), 0.0, 1e-9);
+    EXPECT_TRUE(patches[hit.primitive].inside(hit.t * d));
+    EXPECT_TRUE(accel.occluded({Vec3::Zero(), d, 0.0, 1.0 + 1e-6}));
+    EXPECT_FALSE(accel.occluded({Vec3::Zero(), d, 0.0, 1.0 - 1e-6}));
+  }
+}
+
+TEST(Accel, NearestOfTrianglesAndPatches) {
+  // A unit sphere of patches cut by the plane z = 0.5 (two big triangles): rays from the
+  // centre hit the plane first where it is nearer than the sphere, and the sphere elsewhere.
+  enableFlushToZero();
+  const std::vector<QuadricPatch> patches = spherePatches();
+  TriangleMesh plane;
+  plane.positions = {Vec3(-3, -3, 0.5), Vec3(3, -3, 0.5), Vec3(3, 3, 0.5), Vec3(-3, 3, 0.5)};
+  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+  Accel accel;
+  const uint32_t sphereId = accel.addQuadricPatches(patches);
+  const uint32_t planeId = accel.addTriangles(plane);
+  accel.commit();
+  Pcg32 rng(5);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 d = uniformDirection(rng);
+    const RayHit hit = accel.intersect({Vec3::Zero(), d});
+    ASSERT_TRUE(hit.valid());
+    if (d.z() > 0.5) {
+      EXPECT_EQ(hit.geometry, planeId);
+      EXPECT_NEAR(hit.t, 0.5 / d.z(), 1e-6);
+    } else {
+      EXPECT_EQ(hit.geometry, sphereId);
+      EXPECT_NEAR(hit.t, 1.0, 1e-9);
+    }
+  }
+}
+
+// A ray leaving a convex closed surface from a hit point into the outer hemisphere of the
+// normal never meets the surface again; `offset` pushes the origin off along the normal.
+void expectNoReintersection(const Accel& accel, double offset, uint64_t seed) {
+  Pcg32 rng(seed);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 d0 = uniformDirection(rng);
+    const RayHit hit = accel.intersect({Vec3::Zero(), d0});
+    ASSERT_TRUE(hit.valid());
+    const Vec3 n = hit.geometricNormal;
+    ASSERT_GT(n.dot(d0), 0.0);
+    Vec3 d = uniformDirection(rng);
+    if (d.dot(n) < 0) d = -d;
+    const Ray leaving{hit.t * d0 + offset * n, d};
+    EXPECT_FALSE(accel.intersect(leaving).valid()) << "ray " << i;
+    EXPECT_FALSE(accel.occluded(leaving)) << "ray " << i;
+  }
+}
+
+TEST(Accel, TriangleReintersect) {
+  enableFlushToZero();
+  const TriangleMesh mesh = icosphere(2);
+  Accel accel;
+  accel.addTriangles(mesh);
+  accel.commit();
+  // Float geometry: the offset covers float rounding of the hit point.
+  expectNoReintersection(accel, 1e-5, 13);
+}
+
+TEST(Accel, QuadricPatchReintersect) {
+  enableFlushToZero();
+  const std::vector<QuadricPatch> patches = spherePatches();
+  Accel accel;
+  accel.addQuadricPatches(patches);
+  accel.commit();
+  // Patches intersect in double: an offset of 1e-9 suffices.
+  expectNoReintersection(accel, 1e-9, 17);
+}
+
+TEST(Accel, AllHitsReportsEveryCrossing) {
+  enableFlushToZero();
+  const TriangleMesh mesh = icosphere(2);
+  const std::vector<QuadricPatch> patches = spherePatches();
+  Accel accel(Accel::Options{true, true});
+  accel.addTriangles(mesh);
+  accel.addQuadricPatches(patches);
+  accel.commit();
+  Pcg32 rng(19);
+  for (int i = 0; i < 500; ++i) {
+    // A line through the centre crosses the icosphere and the unit sphere twice each.
+    const Vec3 d = uniformDirection(rng);
+    std::vector<RayHit> hits;
+    accel.allHits({-3.0 * d, d}, hits);
+    ASSERT_EQ(hits.size(), 4u) << "line " << i;
+    std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) { return a.t < b.t; });
+    EXPECT_NEAR(hits[0].t, 2.0, 1e-9);
+    EXPECT_NEAR(hits[3].t, 4.0, 1e-9);
+    EXPECT_LT(hits[0].geometricNormal.dot(d), 0.0);
+    EXPECT_GT(hits[3].geometricNormal.dot(d), 0.0);
+    EXPECT_NEAR(hits[1].t, accel.intersect({-3.0 * d, d, hits[0].t}).t, 1e-6);
+  }
+}
+
+TEST(Accel, MisuseIsAnError) {
+  TriangleMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  mesh.triangles = {{0, 1, 3}};
+  Accel accel;
+  EXPECT_THROW(accel.addTriangles(mesh), Error);  // index out of range
+  mesh.triangles = {{0, 1, 2}};
+  accel.addTriangles(mesh);
+  EXPECT_THROW(accel.intersect({Vec3(0.2, 0.2, -1), Vec3(0, 0, 1)}), Error);  // not committed
+  std::vector<QuadricPatch> bad(1);
+  for (Vec4& plane : bad[0].planes) plane.setZero();
+  bad[0].bounds.extend(Vec3(0, 0, 0));
+  bad[0].bounds.hi.x() = std::nan("");
+  EXPECT_THROW(accel.addQuadricPatches(bad), Error);
+  accel.commit();
+  EXPECT_THROW(accel.addTriangles(mesh), Error);  // already committed
+  std::vector<RayHit> hits;
+  EXPECT_THROW(accel.allHits({Vec3(0.2, 0.2, -1), Vec3(0, 0, 1)}, hits), Error);
+  const Bounds3 b = accel.bounds();
+  EXPECT_EQ(b.lo, Vec3(0, 0, 0));
+  EXPECT_EQ(b.hi, Vec3(1, 1, 0));
+}
+
+}  // namespace
+}  // namespace quadtri

@@ -1,0 +1,138 @@
+// Scene files to render objects: shapes placed as Mitsuba places them, the model override, and
+// errors that name the XML line.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/mesh/shapes.h"
+#include "quadtri/scene/scene_builder.h"
+#include "quadtri/scene/scene_loader.h"
+
+namespace quadtri {
+namespace {
+
+const char* kSensor = R"(<sensor type="perspective"><float name="fov" value="30"/>
+  <transform name="to_world"><lookat origin="0, 0, 6" target="0, 0, 0" up="0, 1, 0"/></transform>
+  <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film>
+  <sampler type="independent"><integer name="sample_count" value="3"/><integer name="seed" value="5"/></sampler>
+</sensor>)";
+
+BuiltScene build(const std::string& body, const std::filesystem::path& file = "test.xml",
+                 const std::optional<std::string>& model = std::nullopt) {
+  return buildScene(parseSceneDescription("<scene version=\"3.0.0\">" + body + "</scene>", file),
+                    model);
+}
+
+std::string errorOf(const std::string& body) {
+  try {
+    build(body);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneBuilder, PlacesBuiltInShapesLikeMitsuba) {
+  // A rectangle scaled by 2 and moved to z = −1 faces the camera; a sphere of radius 0.5 at
+  // x = 3 is hit at its pole.
+  const BuiltScene b = build(std::string(kSensor) + R"(
+    <shape type="rectangle"><transform name="to_world"><scale value="2"/><translate value="0, 0, -1"/></transform></shape>
+    <shape type="sphere"><point name="center" value="3, 0, 0"/><float name="radius" value="0.5"/></shape>)");
+  EXPECT_EQ(b.options.samplesPerPixel, 3);
+  EXPECT_EQ(b.options.seed, 5u);
+  Ray ray;
+  ray.origin = Vec3(1.9, 1.9, 5);
+  ray.direction = Vec3(0, 0, -1);
+  auto si = b.scene->intersect(ray);
+  ASSERT_TRUE(si);
+  EXPECT_NEAR(si->p.z(), -1.0, 1e-12);
+  EXPECT_NEAR((si->geometricNormal - Vec3(0, 0, 1)).norm(), 0.0, 1e-12);
+  ray.origin = Vec3(3, 5, 0);
+  ray.direction = Vec3(0, -1, 0);
+  si = b.scene->intersect(ray);
+  ASSERT_TRUE(si);
+  EXPECT_NEAR((si->p - Vec3(3, 0.5, 0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(b.scene->primitiveCount(), 3u);
+}
+
+TEST(SceneBuilder, ModelOverrideAppliesToMeshesOnly) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "quadtri_scene_builder";
+  std::filesystem::create_directories(dir);
+  saveMesh(makeBuiltin("icosahedron").mesh, dir / "ico.obj");
+  const std::string body = std::string(kSensor) + R"(
+    <shape type="obj"><string name="filename" value="ico.obj"/><string name="model" value="flat"/></shape>
+    <shape type="rectangle"><transform name="to_world"><translate value="0, 0, -3"/></transform></shape>)";
+  EXPECT_EQ(build(body, dir / "s.xml").scene->primitiveCount(), 22u);
+  // quadric-implicit: 20 patches instead of 20 triangles; the rectangle stays two triangles.
+  const BuiltScene implicit = build(body, dir / "s.xml", std::string("quadric-implicit"));
+  EXPECT_EQ(implicit.scene->primitiveCount(), 22u);
+  EXPECT_EQ(implicit.inputTriangles, 20u);
+  Ray ray;
+  ray.origin = Vec3(0, 0, 5);
+  ray.direction = Vec3(0, 0, -1);
+  const auto si = implicit.scene->intersect(ray);
+  ASSERT_TRUE(si);
+  EXPECT_EQ(si->geometry->normals, GeometryRecord::Normals::Gradient);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SceneBuilder, ShadingOffsetFromTheSceneFileLiftsRayOrigins) {
+  // An icosahedron scaled by 2 with the sphere's normals: its hits lift outwards in world
+  // space; the rectangle and the `shading` override do not lift.
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "quadtri_scene_builder_offset";
+  std::filesystem::create_directories(dir);
+  saveMesh(makeBuiltin("icosahedron").mesh, dir / "ico.obj");
+  const std::string body = std::string(kSensor) + R"(
+    <shape type="obj"><string name="filename" value="ico.obj"/>
+      <string name="model" value="shading-offset"/>
+      <transform name="to_world"><scale value="2"/></transform></shape>
+    <shape type="rectangle"><transform name="to_world"><translate value="0, 0, -3"/></transform></shape>)";
+  Ray ray;
+  ray.origin = Vec3(0.1, 0.2, 5);
+  ray.direction = Vec3(0, 0, -1);
+  Ray toRectangle;
+  toRectangle.origin = Vec3(0.5, 0.9, -2);
+  toRectangle.direction = Vec3(0, 0, -1);
+  for (const std::optional<std::string>& model :
+       {std::optional<std::string>(), std::optional<std::string>("shading-offset"),
+        std::optional<std::string>("shading")}) {
+    const bool lifts = !model || *model == "shading-offset";
+    const BuiltScene b = build(body, dir / "s.xml", model);
+    const auto si = b.scene->intersect(ray);
+    ASSERT_TRUE(si);
+    EXPECT_EQ(si->geometry->normals, GeometryRecord::Normals::Interpolated);
+    EXPECT_EQ(si->geometry->liftRayOrigins, lifts);
+    EXPECT_EQ(si->lifted, lifts);
+    if (lifts)
+      EXPECT_GT(si->liftedP.norm(), si->p.norm() + 0.05);
+    else
+      EXPECT_EQ(si->liftedP, si->p);
+    const auto wall = b.scene->intersect(toRectangle);
+    ASSERT_TRUE(wall);
+    EXPECT_FALSE(wall->lifted);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SceneBuilder, ErrorsNameTheXmlLine) {
+  // An area light on a non-uniformly scaled sphere (line 2 of the body's scene).
+  const std::string sphere =
+      errorOf(std::string(kSensor) +
+              "\n<shape type=\"sphere\"><transform name=\"to_world\"><scale value=\"1, 2, 1\"/>"
+              "</transform><emitter type=\"area\"/></shape>");
+  EXPECT_NE(sphere.find("test.xml:6"), std::string::npos) << sphere;
+  EXPECT_NE(sphere.find("similarity"), std::string::npos) << sphere;
+  // A missing mesh file.
+  const std::string missing =
+      errorOf(std::string(kSensor) +
+              "\n<shape type=\"obj\"><string name=\"filename\" value=\"nope.obj\"/></shape>");
+  EXPECT_NE(missing.find("test.xml:6"), std::string::npos) << missing;
+}
+
+}  // namespace
+}  // namespace quadtri
