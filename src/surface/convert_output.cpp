@@ -32,6 +32,8 @@ nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tes
       nlohmann::json bridge;
       bridge["joins"] = {b.joins[0], b.joins[1]};
       bridge["plane"] = {b.q[6], b.q[7], b.q[8], b.q[9]};
+      bridge["join_planes"] = {b.joinPlanes[0], b.joinPlanes[1]};
+      bridge["planes"] = nlohmann::json::array();
       for (int k = 0; k < b.planeCount; ++k)
         bridge["planes"].push_back(
             {b.planes[k][0], b.planes[k][1], b.planes[k][2], b.planes[k][3]});

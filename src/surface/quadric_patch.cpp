@@ -91,11 +91,39 @@ bool insideQuadric(const QuadricPatch& patch, const Vec3& p) {
   return den != 0.0 ? 2.0 * c / den > 0.0 : c < 0.0;
 }
 
+bool betweenSheetAndBase(const QuadricPatch& patch, const Vec3& p, int skipPlane) {
+  if (patch.base == Vec4::Zero()) return false;
+  for (int i = 0; i < patch.planeCount; ++i)
+    if (i != skipPlane && patch.planes[i].head<3>().dot(p) + patch.planes[i][3] < 0.0) return false;
+  const bool insideSheet = patch.orientation * evalQuadric(patch.q, p) < 0.0;
+  const bool belowBase = patch.base.head<3>().dot(p) + patch.base[3] < 0.0;
+  return insideSheet != belowBase;
+}
+
 bool bridgeCovers(const std::vector<QuadricPatch>& primitives, const QuadricPatch& bridge,
                   const Vec3& p) {
-  return insideQuadric(primitives[size_t(bridge.joins[0])], p) !=
-         insideQuadric(primitives[size_t(bridge.joins[1])], p);
+  const QuadricPatch& a = primitives[size_t(bridge.joins[0])];
+  const QuadricPatch& b = primitives[size_t(bridge.joins[1])];
+  if (bridge.joinPlanes[0] >= 0)
+    return betweenSheetAndBase(a, p, bridge.joinPlanes[0]) !=
+           betweenSheetAndBase(b, p, bridge.joinPlanes[1]);
+  return insideQuadric(a, p) != insideQuadric(b, p);
 }
+
+namespace {
+
+// For a bridge: whether the solid lies on its first patch's side at p.
+bool solidOnFirstSide(const std::vector<QuadricPatch>& primitives, const QuadricPatch& bridge,
+                      const Vec3& p) {
+  const QuadricPatch& a = primitives[size_t(bridge.joins[0])];
+  if (bridge.joinPlanes[0] < 0) return insideQuadric(a, p);
+  // Near its triangle the flat solid is below the base; the region between sheet and base
+  // flips that.
+  const bool belowBase = a.base.head<3>().dot(p) + a.base[3] < 0.0;
+  return belowBase != betweenSheetAndBase(a, p, bridge.joinPlanes[0]);
+}
+
+}  // namespace
 
 bool intersectPrimitive(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& o,
                         const Vec3& d, double tmin, double tmax, double& tHit) {
@@ -111,8 +139,7 @@ Vec3 primitiveNormal(const std::vector<QuadricPatch>& primitives, size_t index, 
   if (!patch.isBridge()) return safeNormalized(g, Vec3::Zero());
   // The plane's gradient points into the first patch's side: the solid lies on that side where
   // p is inside the first patch's quadric.
-  return safeNormalized(insideQuadric(primitives[size_t(patch.joins[0])], p) ? Vec3(-g) : g,
-                        Vec3::Zero());
+  return safeNormalized(solidOnFirstSide(primitives, patch, p) ? Vec3(-g) : g, Vec3::Zero());
 }
 
 Vec3 primitiveShadingNormal(const std::vector<QuadricPatch>& primitives, size_t index,

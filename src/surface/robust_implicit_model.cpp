@@ -72,34 +72,95 @@ SharedEdge sharedEdge(const TriangleMesh& mesh, const Edge& edge) {
   return out;
 }
 
-// Largest angle between an edge plane and the bisector of its sides' faces, about the chord.
+// Largest angle between an edge plane and the bisector of its sides' faces, about the chord,
+// and the least angle between the plane and either face.
 constexpr double kMaxPlaneTiltDeg = 45.0;
+constexpr double kLeastFaceAngleDeg = 10.0;
 
-// Normals far from their faces (folds) can tilt the plane of ni+nj towards a side's face, which
-// leaves that side a sliver of a wedge: its patch is clipped away. Turns the plane about the
-// chord back to kMaxPlaneTiltDeg from the faces' bisector (a no-op on smooth data).
+// The edge plane must separate its two triangles (each cell's section by its triangle's plane
+// is then the triangle) and keep away from both: folds tilt the plane of ni+nj towards a face,
+// or past it. About the chord, the planes that separate the two faces are those between the
+// faces' half-planes (the dihedral angle δ); this turns the plane back into the part of that
+// range at least min(kLeastFaceAngleDeg, δ/4) from both faces and within kMaxPlaneTiltDeg of
+// its bisector (a no-op on smooth data). Uses the triangles' corners only, not their normals
+// or winding. A boundary edge's plane keeps away from its one face.
 void keepAwayFromFaces(const TriangleMesh& mesh, const Edge& edge, SharedEdge& shared) {
+  if (edge.sides.empty() || edge.sides.size() > 2) return;
   const Vec3& va = mesh.positions[edge.a];
   const Vec3 e = mesh.positions[edge.b] - va;
   if (!(e.norm() > 0.0)) return;
   const Vec3 ehat = e.normalized();
-  Vec3 bisector = Vec3::Zero();
-  for (auto [t, k] : edge.sides) bisector += patchOrientation(mesh, t) * mesh.faceNormal(t);
-  bisector -= bisector.dot(ehat) * ehat;
-  if (!(bisector.norm() > 1e-6)) return;  // a knife edge or degenerate faces: leave it
-  bisector.normalize();
+  // Unit directions from the chord into each face, perpendicular to the chord.
+  std::array<Vec3, 2> into;
+  for (size_t i = 0; i < edge.sides.size(); ++i) {
+    const auto [t, k] = edge.sides[i];
+    const Vec3 r = mesh.corner(t, (k + 2) % 3) - va;
+    const Vec3 perp = r - r.dot(ehat) * ehat;
+    if (!(perp.norm() > 1e-12 * r.norm()) || !(perp.norm() > 0.0)) return;  // degenerate face
+    into[i] = perp.normalized();
+  }
+  const Vec3 x = into[0];
+  Vec3 y = ehat.cross(x);
+  // The separating planes make angles ψ in (0, δ) with the first face, about the chord.
+  double delta = 180.0;
+  if (edge.sides.size() == 2) {
+    delta = std::atan2(into[1].dot(y), into[1].dot(x)) * 180.0 / kPi;
+    if (delta < 0.0) {
+      y = -y;
+      delta = -delta;
+    }
+    if (!(delta > 1e-9)) return;  // a knife edge: the faces coincide
+  }
+  const double margin = std::min(kLeastFaceAngleDeg, 0.25 * delta);
+  const double lo = std::max(margin, 0.5 * delta - kMaxPlaneTiltDeg);
+  const double hi = std::min(delta - margin, 0.5 * delta + kMaxPlaneTiltDeg);
   Vec3 up = shared.direction - shared.direction.dot(ehat) * ehat;
-  if (!(up.norm() > 0.0)) return;
+  if (!(up.norm() > 0.0))
+    up = std::cos(0.5 * delta * kPi / 180.0) * x + std::sin(0.5 * delta * kPi / 180.0) * y;
   up.normalize();
-  const double maxTilt = kMaxPlaneTiltDeg * kPi / 180.0;
-  if (angleDegrees(up, bisector) <= kMaxPlaneTiltDeg) return;
-  Vec3 across = up - up.dot(bisector) * bisector;
-  across = across.norm() > 0.0 ? Vec3(across.normalized()) : ehat.cross(bisector);
-  up = std::cos(maxTilt) * bisector + std::sin(maxTilt) * across;
-  const Vec3 normal = ehat.cross(up).normalized();
+  // The plane's angle ψ in [0, 180) (a plane through the chord is a line about it).
+  double psi = std::atan2(up.dot(y), up.dot(x)) * 180.0 / kPi;
+  if (psi < 0.0) psi += 180.0;
+  if (psi >= 180.0) psi -= 180.0;
+  if (psi >= lo && psi <= hi) return;
+  // The nearer end of [lo, hi], measured around the 180° circle of planes.
+  const auto gap = [](double a, double b) {
+    const double d = std::fmod(std::abs(a - b), 180.0);
+    return std::min(d, 180.0 - d);
+  };
+  const double target = gap(psi, lo) <= gap(psi, hi) ? lo : hi;
+  Vec3 turned = std::cos(target * kPi / 180.0) * x + std::sin(target * kPi / 180.0) * y;
+  if (turned.dot(shared.direction) < 0.0) turned = -turned;
+  const Vec3 normal = ehat.cross(turned).normalized();
   shared.plane << normal, -normal.dot(va);
-  shared.direction = up;
+  shared.direction = turned;
 }
+
+// The member q + λ·pencil whose quadratic form vanishes along n (a graph over the triangle's
+// plane); false where the pencil has no such member.
+bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
+  const auto alongNormal = [&n](const QuadricCoeffs& c) {
+    return c[0] * n.x() * n.x() + c[1] * n.y() * n.y() + c[2] * n.z() * n.z() +
+           c[3] * n.x() * n.y() + c[4] * n.x() * n.z() + c[5] * n.y() * n.z();
+  };
+  const double ap = alongNormal(pencil), aq = alongNormal(q);
+  if (!(std::abs(ap) > 0.0) || aq == 0.0) return false;
+  double norm2 = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    q[i] -= (aq / ap) * pencil[i];
+    norm2 += q[i] * q[i];
+  }
+  if (!(norm2 > 0.0) || !std::isfinite(norm2)) return false;
+  for (double& c : q) c /= std::sqrt(norm2);
+  return true;
+}
+
+// How far a patch may rise above or sink below its triangle, in units of the triangle's least
+// altitude (twice its area over its longest edge).
+constexpr double kMaxRise = 0.5;
+
+// Blends of the corner normals towards the face normal tried before the flat plane.
+constexpr double kBlends[] = {0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.95};
 
 }  // namespace
 
@@ -148,6 +209,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
                         edges[i].direction);
     keepAwayFromFaces(m, edge, edges[i]);
   });
+  std::vector<ConvexCell> cells(m.triangleCount());
   tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
     QuadricPatch& patch = patches_[t];
@@ -158,52 +220,196 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       frame.edgeDirection[k] = edge.direction;
       frame.edgePlane[k] = edge.plane;
       // Inside is the side of the opposite corner; the neighbour across the edge gets the
-      // same plane negated (exactly), so the two partition space along the edge.
+      // same plane negated (exactly).
       const Vec3& opposite = m.corner(t, (k + 2) % 3);
       const double side = edge.plane.head<3>().dot(opposite) + edge.plane[3];
       patch.planes[k] = side < 0.0 ? Vec4(-edge.plane) : edge.plane;
     }
     patch.planeCount = 3;
-    patch.facing = frame.faceNormal;
-    clipToPatch(t);
-    // Normals no quadric of the pencil follows (a fold, the teapot's knob): the quadric leaves
-    // the wedge or misses the projection lines, so its patch would leave a hole. The triangle's
-    // own plane, clipped by the same edge planes, is the triangle; the bridges join it to its
-    // neighbours.
-    if (!coversItself(t) && frame.faceNormal.squaredNorm() > 0.5) {
-      patch.q.fill(0.0);
-      patch.q[6] = frame.faceNormal.x();
-      patch.q[7] = frame.faceNormal.y();
-      patch.q[8] = frame.faceNormal.z();
-      patch.q[9] = -frame.faceNormal.dot(m.corner(t, 0));
-      patch.orientation = 1.0;
-      frame.flat = true;
-      frame.cornerNormalErrorDeg = 0.0;
-      for (int k = 0; k < 3; ++k)
-        frame.cornerNormalErrorDeg = std::max(frame.cornerNormalErrorDeg,
-                                              angleDegrees(frame.faceNormal, m.cornerNormal(t, k)));
-      clipToPatch(t);
-    }
   });
-  addBridges(topo);
+  tbb::parallel_for(size_t(0), m.triangleCount(),
+                    [&](size_t t) { choosePatch(t, patches_[t].q, pencils[t], cells[t]); });
+  addBridges(topo, cells);
 }
 
-bool RobustImplicitModel::coversItself(size_t t) const {
+bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, ConvexCell& cell) {
   const TriangleMesh& m = mesh();
-  const QuadricPatch& patch = patches_[t];
-  const Vec3& n = frames_[t].faceNormal;
+  Frame& frame = frames_[t];
+  QuadricPatch& patch = patches_[t];
+  const Vec3& n = frame.faceNormal;
+  double facing = 0.0;
+  for (int k = 0; k < 3; ++k) facing += quadricGradient(q, m.corner(t, k)).dot(n);
+  if (!(std::abs(facing) > 0.0) || !std::isfinite(facing)) return false;
+  patch.q = q;
+  patch.orientation = facing < 0.0 ? -1.0 : 1.0;
+  patch.facing = Vec3::Zero();
+  const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
+  patch.base << n, -n.dot(centre);
   const double scale = m.meanEdgeLength(t);
-  // Lines along the face normal through the triangle's inner lattice points: each must meet
-  // the clipped patch within a mean edge length of the triangle.
-  constexpr int level = 6;
-  for (int j = 1; j < level; ++j)
-    for (int i = 1; i + j < level; ++i) {
-      const double u = double(i) / level, v = double(j) / level;
-      const Vec3 x = (1.0 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);
-      double hit;
-      if (!intersectQuadricPatch(patch, x - scale * n, n, 0.0, 2.0 * scale, hit)) return false;
+  const double tolerance = 1e-10 * (scale + centre.norm());
+
+  // Heights of the patch over its triangle, sampled, and how far it may stray between samples:
+  // the quadric's Hessian is constant (2M), so |Hessian|/|∇q| bounds its curvature.
+  const int ns = kBoundSamples;
+  std::vector<Vec3> grid;
+  grid.reserve((ns + 1) * (ns + 2) / 2);
+  const auto index = [ns](int i, int j) { return size_t(j * (ns + 1) - j * (j - 1) / 2 + i); };
+  Mat3 hessian;
+  hessian << 2 * q[0], q[3], q[4], q[3], 2 * q[1], q[5], q[4], q[5], 2 * q[2];
+  const double hessianNorm = hessian.norm();
+  double curvature = 0.0, hmin = 0.0, hmax = 0.0;
+  for (int j = 0; j <= ns; ++j)
+    for (int i = 0; i + j <= ns; ++i) {
+      const Vec3 p = evaluate(t, double(i) / ns, double(j) / ns).position;
+      grid.push_back(p);
+      const double h = n.dot(p - centre);
+      hmin = std::min(hmin, h);
+      hmax = std::max(hmax, h);
+      const double g = quadricGradient(q, p).norm();
+      curvature = std::max(curvature, g > 0.0 ? hessianNorm / g : kInfinity);
     }
-  return true;
+  double spacing = 0.0;
+  for (int j = 0; j <= ns; ++j)
+    for (int i = 0; i + j < ns; ++i) {
+      spacing = std::max(spacing, (grid[index(i + 1, j)] - grid[index(i, j)]).norm());
+      spacing = std::max(spacing, (grid[index(i, j + 1)] - grid[index(i, j)]).norm());
+    }
+  const double margin = std::min(0.25 * curvature * spacing * spacing, 0.1 * scale) + 1e-4 * scale;
+  // No farther from the triangle than a share of its least altitude: fits to normals that no
+  // surface near the triangle has (averaged across a sharp edge, on a sliver) bulge far out,
+  // into other parts of the mesh.
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
+  const double altitude = m.faceCross(t).norm() / longest;
+  if (!(std::max(hmax, -hmin) <= kMaxRise * altitude)) return false;
+
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const double slab = (0.25 * (hmax - hmin) + margin + 0.01 * scale) * std::pow(3.0, attempt);
+    const double lo = hmin - slab, hi = hmax + slab;
+    patch.planes[3] << n, -n.dot(centre) - lo;
+    patch.planes[4] << -n, n.dot(centre) + hi;
+    patch.planeCount = 5;
+    cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + 5}, tolerance);
+    if (cell.vertices.size() < 4) return false;
+    // One sheet, a graph over the triangle's plane: orientation·∇q·n, linear in x, is positive
+    // at every vertex of the cell, so everywhere in it.
+    double gmax = 0.0;
+    for (const Vec3& v : cell.vertices) gmax = std::max(gmax, quadricGradient(q, v).norm());
+    for (const Vec3& v : cell.vertices)
+      if (!(patch.orientation * quadricGradient(q, v).dot(n) > 1e-3 * gmax)) return false;
+    // Inside the slab: orientation·q < 0 on all of its lower face, > 0 on all of its upper one.
+    const double eps = 1e-9 * scale * gmax;
+    const auto [lowLo, lowHi] = quadricRangeOnFace(q, cell, 3);
+    const auto [upLo, upHi] = quadricRangeOnFace(q, cell, 4);
+    const bool lowOk = patch.orientation > 0.0 ? lowHi < -eps : lowLo > eps;
+    const bool upOk = patch.orientation > 0.0 ? upLo > eps : upHi < -eps;
+    if (!lowOk || !upOk) continue;
+    patch.bounds = quadricBoundsInCell(q, cell);
+    if (patch.bounds.empty()) return false;
+    patch.bounds.inflate(1e-7 * scale + tolerance);
+    // Covers its triangle: lines along the face normal through the triangle's inner lattice
+    // points meet it within a mean edge length.
+    constexpr int level = 6;
+    for (int j = 1; j < level; ++j)
+      for (int i = 1; i + j < level; ++i) {
+        const double u = double(i) / level, v = double(j) / level;
+        const Vec3 x = (1.0 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);
+        double hit;
+        if (!intersectQuadricPatch(patch, x - scale * n, n, 0.0, 2.0 * scale, hit)) return false;
+      }
+    return true;
+  }
+  return false;
+}
+
+void RobustImplicitModel::makeFlat(size_t t, ConvexCell& cell) {
+  const TriangleMesh& m = mesh();
+  Frame& frame = frames_[t];
+  QuadricPatch& patch = patches_[t];
+  const Vec3& n = frame.faceNormal;
+  const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
+  const double scale = m.meanEdgeLength(t);
+  const double tolerance = 1e-10 * (scale + centre.norm());
+  frame.flat = true;
+  frame.blend = 1.0;
+  patch.facing = Vec3::Zero();
+  patch.orientation = 1.0;
+  patch.q.fill(0.0);
+  // A triangle without area (or extent) has no plane: it stands for nothing (no base), and
+  // its flat triangle has no area either.
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
+  const bool degenerate = !(m.faceCross(t).norm() > 1e-10 * longest * longest);
+  patch.base = Vec4::Zero();
+  const double slab = 0.01 * scale;
+  patch.planes[3] << n, -n.dot(centre) + slab;
+  patch.planes[4] << -n, n.dot(centre) + slab;
+  patch.planeCount = 5;
+  patch.bounds = Bounds3();
+  for (int k = 0; k < 3; ++k) patch.bounds.extend(m.corner(t, k));
+  patch.bounds.inflate(1e-7 * scale + tolerance);
+  cell = ConvexCell();
+  if (degenerate) return;
+  // The plane and the base are the same numbers, so the region between them is empty.
+  patch.q[6] = n.x();
+  patch.q[7] = n.y();
+  patch.q[8] = n.z();
+  patch.q[9] = -n.dot(centre);
+  patch.base << n, -n.dot(centre);
+  cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + 5}, tolerance);
+  const Bounds3 exact = quadricBoundsInCell(patch.q, cell);
+  if (!exact.empty()) {
+    patch.bounds = exact;
+    patch.bounds.inflate(1e-7 * scale + tolerance);
+  }
+}
+
+void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
+                                      const QuadricCoeffs& pencil, ConvexCell& cell) {
+  const TriangleMesh& m = mesh();
+  Frame& frame = frames_[t];
+  const Vec3& n = frame.faceNormal;
+  frame.flat = false;
+  frame.blend = 0.0;
+  const auto finish = [&](double blend) {
+    frame.blend = blend;
+    const QuadricPatch& patch = patches_[t];
+    frame.cornerNormalErrorDeg = 0.0;
+    for (int k = 0; k < 3; ++k)
+      frame.cornerNormalErrorDeg =
+          std::max(frame.cornerNormalErrorDeg,
+                   angleDegrees(patch.orientation * quadricGradient(patch.q, m.corner(t, k)),
+                                m.cornerNormal(t, k)));
+  };
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
+  if (m.faceCross(t).norm() > 1e-10 * longest * longest) {
+    // The fit (moved along its pencil by the mesh-wide steps), then its graph member.
+    if (tryQuadric(t, fitted, cell)) return finish(0.0);
+    QuadricCoeffs graph = fitted;
+    if (graphMember(pencil, n, graph) && tryQuadric(t, graph, cell)) return finish(0.0);
+    // Corner normals blended towards the face normal: corners stay exact, the normals move
+    // as little as the checks allow.
+    for (double blend : kBlends) {
+      CornerData data;
+      for (int k = 0; k < 3; ++k) {
+        data.position[k] = m.corner(t, k);
+        data.normal[k] = safeNormalized((1.0 - blend) * m.cornerNormal(t, k) + blend * n, n);
+      }
+      for (int k = 0; k < 3; ++k)
+        data.arcMidpoint[k] = edgeArcMidpoint(data.position[k], data.normal[k],
+                                              data.position[(k + 1) % 3], data.normal[(k + 1) % 3]);
+      const QuadricFit fit = fitQuadric(data);
+      if (tryQuadric(t, fit.q, cell)) return finish(blend);
+      QuadricCoeffs member = fit.q;
+      if (graphMember(fit.pencil, n, member) && tryQuadric(t, member, cell)) return finish(blend);
+    }
+  }
+  makeFlat(t, cell);
+  finish(1.0);
 }
 
 size_t RobustImplicitModel::flatCount() const {
@@ -212,10 +418,15 @@ size_t RobustImplicitModel::flatCount() const {
   return count;
 }
 
-void RobustImplicitModel::addBridges(const MeshTopology& topo) {
+size_t RobustImplicitModel::blendedCount() const {
+  size_t count = 0;
+  for (const Frame& frame : frames_) count += !frame.flat && frame.blend > 0.0;
+  return count;
+}
+
+void RobustImplicitModel::addBridges(const MeshTopology& topo,
+                                     const std::vector<ConvexCell>& cells) {
   const TriangleMesh& m = mesh();
-  const Vec2 cornerUv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
-  const int n = kBoundSamples;
   std::vector<QuadricPatch> bridges(topo.edges.size());
   std::vector<char> needed(topo.edges.size(), 0);
   tbb::parallel_for(size_t(0), topo.edges.size(), [&](size_t i) {
@@ -229,41 +440,47 @@ void RobustImplicitModel::addBridges(const MeshTopology& topo) {
     const Vec3& vb = m.positions[edge.b];
     const double length = (vb - va).norm();
     if (!(length > 0.0)) return;
-    // Both boundaries, sampled at the same points of the edge: evaluate starts them from the
-    // shared parametric edge, in the shared plane, along the shared direction.
-    const bool sameWay = m.triangles[ta][ka] == m.triangles[tb][kb];
-    QuadricPatch bridge;
-    double gap = 0.0;
-    for (int j = 0; j <= n; ++j) {
-      const double s = double(j) / n;
-      const Vec2 ua = cornerUv[ka] + s * (cornerUv[(ka + 1) % 3] - cornerUv[ka]);
-      const double sb = sameWay ? s : 1.0 - s;
-      const Vec2 ub = cornerUv[kb] + sb * (cornerUv[(kb + 1) % 3] - cornerUv[kb]);
-      const Vec3 pa = evaluate(ta, ua.x(), ua.y()).position;
-      const Vec3 pb = evaluate(tb, ub.x(), ub.y()).position;
-      bridge.bounds.extend(pa);
-      bridge.bounds.extend(pb);
-      gap = std::max(gap, (pa - pb).norm());
-    }
-    // Sides that meet to round-off (data from a quadric) need no bridge.
-    if (!(gap > 1e-9 * length)) return;
-    bridge.bounds.inflate(std::max(frames_[ta].boundsMargin, frames_[tb].boundsMargin));
     const Vec4& plane = a.planes[ka];  // its gradient points into a's side
+    // Sides whose regions between sheet and base meet the plane identically (data from a
+    // quadric: the same conic, the same base line and side) need no bridge.
+    Vec3 u, w;
+    orthonormalBasis(plane.head<3>(), u, w);
+    const Vec3 o = 0.5 * (va + vb);
+    const auto conic = [&](const QuadricPatch& p) {
+      const QuadricCoeffs& q = p.q;
+      Mat3 M;
+      M << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
+      const Vec3 g = quadricGradient(q, o);
+      Eigen::Matrix<double, 6, 1> c;
+      c << u.dot(M * u) * length * length, 2.0 * u.dot(M * w) * length * length,
+          w.dot(M * w) * length * length, g.dot(u) * length, g.dot(w) * length, evalQuadric(q, o);
+      c *= p.orientation;
+      return Eigen::Matrix<double, 6, 1>(c.normalized());
+    };
+    const Vec3 off = o + length * (plane.head<3>().cross(vb - va).normalized());
+    const bool sameBaseSide = (a.base.head<3>().dot(off) + a.base[3] < 0.0) ==
+                              (b.base.head<3>().dot(off) + b.base[3] < 0.0);
+    if (a.base != Vec4::Zero() && b.base != Vec4::Zero() && sameBaseSide &&
+        (conic(a) - conic(b)).norm() < 1e-9)
+      return;
+    Bounds3 box;
+    if (a.base != Vec4::Zero())
+      box.extend(betweenBoundsOnFace(a.q, a.orientation, a.base, cells[ta], ka));
+    if (b.base != Vec4::Zero())
+      box.extend(betweenBoundsOnFace(b.q, b.orientation, b.base, cells[tb], kb));
+    if (box.empty()) return;  // both sheets lie on their bases along this face
+    box.inflate(1e-7 * std::max(m.meanEdgeLength(ta), m.meanEdgeLength(tb)) +
+                1e-10 * (length + o.norm()));
+    QuadricPatch bridge;
     bridge.q.fill(0.0);
     bridge.q[6] = plane[0];
     bridge.q[7] = plane[1];
     bridge.q[8] = plane[2];
     bridge.q[9] = plane[3];
-    // Near both sheets (the two slabs) and between the edge's ends, where the lens pinches.
-    bridge.planes[0] = a.planes[3];
-    bridge.planes[1] = a.planes[4];
-    bridge.planes[2] = b.planes[3];
-    bridge.planes[3] = b.planes[4];
-    const Vec3 along = (vb - va) / length;
-    bridge.planes[4] << along, -along.dot(va);
-    bridge.planes[5] << -along, along.dot(vb);
-    bridge.planeCount = 6;
+    bridge.bounds = box;
+    bridge.planeCount = 0;
     bridge.joins = {int32_t(ta), int32_t(tb)};
+    bridge.joinPlanes = {int8_t(ka), int8_t(kb)};
     bridges[i] = bridge;
     needed[i] = 1;
   });
@@ -317,55 +534,6 @@ SurfacePoint RobustImplicitModel::evaluate(size_t t, double u, double v) const {
   return {p, safeNormalized(patch.orientation * quadricGradient(q, p), frame.faceNormal)};
 }
 
-void RobustImplicitModel::clipToPatch(size_t t) {
-  const TriangleMesh& m = mesh();
-  const Frame& frame = frames_[t];
-  QuadricPatch& patch = patches_[t];
-  const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
-  const double scale = m.meanEdgeLength(t);
-  const int n = kBoundSamples;
-  std::vector<Vec3> grid;
-  grid.reserve((n + 1) * (n + 2) / 2);
-  const auto index = [n](int i, int j) { return size_t(j * (n + 1) - j * (j - 1) / 2 + i); };
-  // The quadric's Hessian is constant (2M), so |Hessian|/|∇q| bounds the curvature.
-  const QuadricCoeffs& q = patch.q;
-  Mat3 hessian;
-  hessian << 2 * q[0], q[3], q[4], q[3], 2 * q[1], q[5], q[4], q[5], 2 * q[2];
-  const double hessianNorm = hessian.norm();
-  double curvature = 0.0, hmin = kInfinity, hmax = -kInfinity;
-  patch.bounds = Bounds3();
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i + j <= n; ++i) {
-      const SurfacePoint sp = evaluate(t, double(i) / n, double(j) / n);
-      grid.push_back(sp.position);
-      patch.bounds.extend(sp.position);
-      const double h = frame.faceNormal.dot(sp.position - centre);
-      hmin = std::min(hmin, h);
-      hmax = std::max(hmax, h);
-      const double g = quadricGradient(q, sp.position).norm();
-      curvature = std::max(curvature, g > 0.0 ? hessianNorm / g : kInfinity);
-    }
-  double spacing = 0.0;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i + j < n; ++i) {
-      spacing = std::max(spacing, (grid[index(i + 1, j)] - grid[index(i, j)]).norm());
-      spacing = std::max(spacing, (grid[index(i, j + 1)] - grid[index(i, j)]).norm());
-    }
-  // Between samples the patch leaves their hull by at most the sagitta κδ²/8; twice that plus
-  // a round-off floor, capped where the curvature bound is meaningless (near-singular points).
-  const double margin = std::min(0.25 * curvature * spacing * spacing, 0.1 * scale) + 1e-4 * scale;
-  patch.bounds.inflate(margin);
-  frames_[t].boundsMargin = margin;
-  // The slab keeps the sheet through the corners: generous on the patch's own height range,
-  // far tighter than the distance to any other sheet of a sane fit.
-  // A plane has one sheet: its slab only has to hold the bridges' lenses to its neighbours.
-  const double slab = frame.flat ? 0.5 * scale : 0.25 * (hmax - hmin) + margin + 0.01 * scale;
-  const Vec3& nf = frame.faceNormal;
-  patch.planes[3] << nf, -nf.dot(centre) - (hmin - slab);
-  patch.planes[4] << -nf, nf.dot(centre) + (hmax + slab);
-  patch.planeCount = 5;
-}
-
 nlohmann::json RobustImplicitModel::patchJson(size_t t) const {
   const QuadricPatch& patch = patches_[t];
   nlohmann::json j;
@@ -384,6 +552,8 @@ nlohmann::json RobustImplicitModel::patchJson(size_t t) const {
   j["orientation"] = patch.orientation;
   j["corner_normal_error_deg"] = frames_[t].cornerNormalErrorDeg;
   j["flat"] = frames_[t].flat;
+  j["blend"] = frames_[t].blend;
+  j["base"] = {patch.base[0], patch.base[1], patch.base[2], patch.base[3]};
   return j;
 }
 

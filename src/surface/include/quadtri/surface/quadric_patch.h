@@ -37,6 +37,14 @@ struct QuadricPatch {
   /// conics in which their quadrics meet the plane. With it, neighbouring patches that do not
   /// meet exactly still bound a closed solid.
   std::array<int32_t, 2> joins{-1, -1};
+  /// For a bridge between patches with a `base`: the plane of each joined patch (an index into
+  /// its planes) that the bridge lies in; see bridgeCovers.
+  std::array<int8_t, 2> joinPlanes{-1, -1};
+  /// Where non-zero (n, d with unit n): the plane of the patch's triangle, n on the side the
+  /// oriented gradient points to. The patch's planes then bound a convex cell whose section by
+  /// this plane is the triangle, and the patch stands for the region of the cell between its
+  /// quadric and this plane (see betweenSheetAndBase).
+  Vec4 base = Vec4::Zero();
   /// Where non-zero, only the sheet facing this way is kept: points where the oriented gradient
   /// has a positive component along it (one sheet of a quadric that folds back within the
   /// clip planes, such as a thin hyperboloid hugging its triangle).
@@ -63,8 +71,19 @@ bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3&
 /// increases) ahead of p, so the sheet the patch drops changes nothing.
 bool insideQuadric(const QuadricPatch& patch, const Vec3& p);
 
-/// True where the bridge `bridge` of `primitives` exists at p (a point of its plane): the two
-/// patches it joins disagree about p's side.
+/// For a patch with a `base`: p lies in the patch's cell (every plane but `skipPlane`, which
+/// may be -1) and between its quadric and its base plane, i.e. orientation·q(p) < 0 and
+/// base(p) < 0 disagree. False for a patch without a base.
+bool betweenSheetAndBase(const QuadricPatch& patch, const Vec3& p, int skipPlane);
+
+/// True where the bridge `bridge` of `primitives` exists at p (a point of its plane). Between
+/// patches with a base (`quadric-implicit-robust`): exactly one of the two is between its sheet
+/// and its base at p (betweenSheetAndBase, the bridge's plane skipped). The solid is the flat
+/// mesh's, changed by every cell's region between sheet and base; its boundary is every
+/// patch's quadric inside its cell and, on each cell face, where that region meets the face:
+/// on a face shared by two cells the two contributions cancel where they coincide, and what
+/// remains is this bridge. That surface is closed whatever the quadrics are. Otherwise (legacy
+/// bridges): the two patches disagree about p's side (insideQuadric).
 bool bridgeCovers(const std::vector<QuadricPatch>& primitives, const QuadricPatch& bridge,
                   const Vec3& p);
 

@@ -9,6 +9,7 @@
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/quadric_patch.h"
+#include "quadtri/surface/robust_cell.h"
 
 namespace quadtri {
 
@@ -17,33 +18,37 @@ namespace quadtri {
 /// along its pencil q + μL², which keeps the corners and their normals: where the fit leaves
 /// part of the triangle uncovered (normals no quadric comes near), the member that is a graph
 /// over the triangle's plane; on data from a quadric, the members on which neighbours agree
-/// across their edges (sparse least squares). Each patch is clipped to
-///  - three edge planes through the edge's chord, computed once per mesh edge and handed to
-///    the two neighbours with opposite inside sides, so together they partition space along
-///    the edge: the plane of the line pair a − κb through the edge where that is real (both
-///    patches then end on the curve where their quadrics meet; exactly for data from any
-///    quadric), otherwise the thesis' P_ij (spanned by vj−vi and ni+nj, from normals both
-///    sides share);
-///  - a slab parallel to the triangle around the patch's height range, which keeps the near
-///    sheet only;
-///  - a tight box: the sampled patch grown by a curvature bound on the sagitta between samples.
+/// across their edges (sparse least squares).
+///
+/// Each patch lives in a convex cell: three edge planes through the edge's chord, computed once
+/// per mesh edge and handed to the two neighbours with opposite inside sides (the plane of the
+/// line pair a − κb through the edge where that is real, so both patches end on the curve
+/// where their quadrics meet, exactly for data from any quadric; otherwise the thesis' P_ij,
+/// spanned by vj−vi and ni+nj, turned towards the bisector of the two faces), and a slab
+/// parallel to the triangle around the patch's height range. The cell's section by the
+/// triangle's plane is the triangle.
+///
+/// Watertight by construction. The model's solid is the flat mesh's solid changed (symmetric
+/// difference) by, in every cell, the region between the patch's quadric and the triangle's
+/// plane. Its boundary is the flat triangles (each cancelled by its cell's section: the
+/// triangle), every quadric inside its cell, and on every cell face the part of the face where
+/// that region meets it. The cells need not fit together: on a face two neighbours share, their
+/// two parts cancel where they coincide and the rest is the edge's bridge
+/// (QuadricPatch::joins, bridgeCovers): for smooth data the lens between the two conics. A
+/// patch is accepted only where its cell proves it needs nothing else: the oriented gradient
+/// has a positive component along the face normal at every vertex of the cell (so inside the
+/// cell the quadric is one sheet, a graph over the triangle's plane) and the quadric keeps one
+/// sign on each slab face (it stays inside the slab). So the patches and bridges bound a
+/// closed solid for any data; edges where the two sides meet exactly (data from a quadric)
+/// need no bridge.
+///
+/// Where the fit fails those checks or does not cover its triangle (normals that no quadric
+/// through the corners follows: folds, averaged normals across sharp edges), the patch falls
+/// back, keeping as much as it can: the pencil's graph member, then fits to corner normals
+/// blended towards the face normal (corners still exact), and last the triangle's own plane.
 /// evaluate(t, u, v) projects the thesis' parametric patch f_p(u, v) onto the quadric along a
 /// direction that lies in the edge plane on each edge (the start point moved into that plane),
 /// so the boundary it reports is the clipped boundary.
-///
-/// On generic data (not from a quadric) neighbouring quadrics meet the shared plane in
-/// slightly different conics (their corner normals differ by the O(h²) error that no quadric
-/// through three points with three prescribed tangent planes avoids). Both conics pass through
-/// the edge's two vertices, so the sliver between them is a lens pinched at its ends; an edge
-/// bridge (QuadricPatch::joins) fills it with the part of the shared plane where the two
-/// quadrics disagree about inside and outside, and the patches with their bridges bound a
-/// closed solid. Edges where the two sides meet to round-off (data from a quadric) get none.
-///
-/// Where the normals are such that no member of the pencil follows them (a fold, such as the
-/// ring around the teapot's knob), the quadric leaves its wedge or misses the lines evaluate
-/// projects along, and its patch would not cover the triangle. Such a patch falls back to the
-/// triangle's own plane (the same edge planes then clip it to the triangle), and its bridges
-/// join it to its neighbours: a flat facet rather than a hole.
 class RobustImplicitModel final : public SurfaceModel {
  public:
   explicit RobustImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
@@ -59,6 +64,11 @@ class RobustImplicitModel final : public SurfaceModel {
   /// Number of patches that fell back to their triangle's plane.
   size_t flatCount() const;
   bool isFlat(size_t t) const { return frames_[t].flat; }
+  /// Number of patches fitted to corner normals blended towards the face normal.
+  size_t blendedCount() const;
+  /// The blend of patch t's corner normals towards its face normal: 0 for the fit to the
+  /// shading normals, 1 for the triangle's plane.
+  double blend(size_t t) const { return frames_[t].blend; }
   nlohmann::json patchJson(size_t t) const override;
 
   /// Largest angle (degrees) between the quadric's normal at a corner of patch t and the
@@ -74,12 +84,16 @@ class RobustImplicitModel final : public SurfaceModel {
     std::array<Vec4, 3> edgePlane;
     Vec3 faceNormal;
     double cornerNormalErrorDeg = 0.0;
-    double boundsMargin = 0.0;  ///< how far the patch may leave the hull of its samples
-    bool flat = false;          ///< fell back to the triangle's plane (see the class comment)
+    double blend = 0.0;  ///< normals blended this far towards the face normal (1: flat)
+    bool flat = false;   ///< fell back to the triangle's plane (see the class comment)
   };
-  bool coversItself(size_t t) const;
-  void clipToPatch(size_t t);
-  void addBridges(const MeshTopology& topo);
+  /// Makes q patch t's quadric if its cell passes the checks of the class comment (and it
+  /// covers the triangle); fills `cell` and the patch's slab, orientation and bounds.
+  bool tryQuadric(size_t t, const QuadricCoeffs& q, ConvexCell& cell);
+  void makeFlat(size_t t, ConvexCell& cell);
+  void choosePatch(size_t t, const QuadricCoeffs& fitted, const QuadricCoeffs& pencil,
+                   ConvexCell& cell);
+  void addBridges(const MeshTopology& topo, const std::vector<ConvexCell>& cells);
 
   std::vector<QuadricPatch> patches_;
   std::vector<QuadricPatch> primitives_;
