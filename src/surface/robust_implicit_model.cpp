@@ -136,6 +136,62 @@ void keepAwayFromFaces(const TriangleMesh& mesh, const Edge& edge, SharedEdge& s
   shared.direction = turned;
 }
 
+// Per triangle, +1 or -1: the side of its face normal (v1−v0)×(v2−v0) its patch faces. Each
+// connected part of the mesh (across edges with two sides) is oriented consistently from its
+// topology, flipping triangles whose winding disagrees with their neighbours', and then as a
+// whole to the side most shading normals point to: a closed part says where its inside is, and
+// every triangle must agree about it, whatever its own normals say. A part that cannot be
+// oriented (non-orientable, or edges with more sides) lets each triangle's own normals decide
+// (patchOrientation).
+std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo) {
+  const size_t n = mesh.triangleCount();
+  // Neighbours across two-sided edges, and whether their windings agree along the edge.
+  std::vector<std::vector<std::pair<uint32_t, bool>>> next(n);
+  std::vector<char> orientable(n, 1);
+  for (const Edge& edge : topo.edges) {
+    if (edge.sides.size() > 2)
+      for (auto [t, k] : edge.sides) orientable[t] = 0;
+    if (edge.sides.size() != 2) continue;
+    const auto [t0, k0] = edge.sides[0];
+    const auto [t1, k1] = edge.sides[1];
+    const bool opposite = mesh.triangles[t0][k0] != mesh.triangles[t1][k1];
+    next[t0].emplace_back(t1, opposite);
+    next[t1].emplace_back(t0, opposite);
+  }
+  std::vector<double> flip(n, 0.0), side(n, 1.0);
+  std::vector<uint32_t> part, stack;
+  for (size_t seed = 0; seed < n; ++seed) {
+    if (flip[seed] != 0.0) continue;
+    part.clear();
+    stack.assign(1, uint32_t(seed));
+    flip[seed] = 1.0;
+    bool ok = true;
+    while (!stack.empty()) {
+      const uint32_t t = stack.back();
+      stack.pop_back();
+      part.push_back(t);
+      ok &= orientable[t] != 0;
+      for (auto [u, opposite] : next[t]) {
+        const double want = opposite ? flip[t] : -flip[t];
+        if (flip[u] == 0.0) {
+          flip[u] = want;
+          stack.push_back(u);
+        } else {
+          ok &= flip[u] == want;
+        }
+      }
+    }
+    double vote = 0.0;
+    for (uint32_t t : part) {
+      const Vec3 ns = mesh.cornerNormal(t, 0) + mesh.cornerNormal(t, 1) + mesh.cornerNormal(t, 2);
+      vote += flip[t] * mesh.faceCross(t).dot(ns);
+    }
+    const double sign = vote < 0.0 ? -1.0 : 1.0;
+    for (uint32_t t : part) side[t] = ok ? sign * flip[t] : patchOrientation(mesh, t);
+  }
+  return side;
+}
+
 // The member q + λ·pencil whose quadratic form vanishes along n (a graph over the triangle's
 // plane); false where the pencil has no such member.
 bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
@@ -209,12 +265,13 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
                         edges[i].direction);
     keepAwayFromFaces(m, edge, edges[i]);
   });
+  const std::vector<double> sides = faceSides(m, topo);
   std::vector<ConvexCell> cells(m.triangleCount());
   tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
     QuadricPatch& patch = patches_[t];
     frame.parametric = quadraticPatch(m, controlPoints, t);
-    frame.faceNormal = patchOrientation(m, t) * m.faceNormal(t);
+    frame.faceNormal = sides[t] * m.faceNormal(t);
     for (int k = 0; k < 3; ++k) {
       const SharedEdge& edge = edges[topo.edgeOf[t][k]];
       frame.edgeDirection[k] = edge.direction;

@@ -77,7 +77,8 @@ class RobustImplicitModel final : public SurfaceModel {
 
  private:
   /// What evaluate needs beyond the quadric: f_p, the projection direction in each edge plane
-  /// and the unit face normal (oriented to the shading normals).
+  /// and the unit face normal, on the side of its part of the mesh that most shading normals
+  /// point to (the winding, made consistent across the part: faceSides).
   struct Frame {
     QuadraticPatch parametric;
     std::array<Vec3, 3> edgeDirection;
