@@ -165,6 +165,45 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
   return cell;
 }
 
+bool cellsOverlap(const ConvexCell& a, const ConvexCell& b, double tolerance) {
+  if (a.empty() || b.empty()) return false;
+  const auto separated = [&](const Vec3& axis) {
+    const double norm = axis.norm();
+    if (!(norm > 0.0)) return false;
+    double aLo = kInfinity, aHi = -kInfinity, bLo = kInfinity, bHi = -kInfinity;
+    for (const Vec3& v : a.vertices) {
+      const double x = axis.dot(v) / norm;
+      aLo = std::min(aLo, x);
+      aHi = std::max(aHi, x);
+    }
+    for (const Vec3& v : b.vertices) {
+      const double x = axis.dot(v) / norm;
+      bLo = std::min(bLo, x);
+      bHi = std::max(bHi, x);
+    }
+    return aHi <= bLo + tolerance || bHi <= aLo + tolerance;
+  };
+  for (const ConvexCell* cell : {&a, &b})
+    for (size_t f = 0; f < cell->faces.size(); ++f)
+      if (!cell->faces[f].empty() && separated(cell->planes[f].head<3>())) return false;
+  const auto edges = [](const ConvexCell& cell) {
+    std::vector<Vec3> out;
+    for (size_t f = 0; f < cell.faces.size(); ++f)
+      faceEdges(cell, int(f), [&](const Vec3& p, const Vec3& q) {
+        const Vec3 d = q - p;
+        if (d.norm() > 0.0) out.push_back(d.normalized());
+      });
+    return out;
+  };
+  const std::vector<Vec3> ea = edges(a), eb = edges(b);
+  for (const Vec3& u : ea)
+    for (const Vec3& w : eb) {
+      const Vec3 axis = u.cross(w);
+      if (axis.norm() > 1e-9 && separated(axis)) return false;
+    }
+  return true;
+}
+
 namespace {
 
 // Every candidate extreme point of dir·x over {q = 0} ∩ cell, for each dir of `dirs`: where the
@@ -213,6 +252,16 @@ Bounds3 quadricBoundsInCell(const QuadricCoeffs& q, const ConvexCell& cell) {
   extremeCandidates(q, cell, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()},
                     [&](const Vec3& p) { box.extend(p); });
   return box;
+}
+
+std::pair<double, double> quadricRangeInCell(const QuadricCoeffs& q, const ConvexCell& cell,
+                                             const Vec3& dir) {
+  double lo = kInfinity, hi = -kInfinity;
+  extremeCandidates(q, cell, {dir}, [&](const Vec3& p) {
+    lo = std::min(lo, dir.dot(p));
+    hi = std::max(hi, dir.dot(p));
+  });
+  return {lo, hi};
 }
 
 Bounds3 betweenBoundsOnFace(const QuadricCoeffs& q, double sign, const Vec4& base,

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "quadtri/mesh/topology.h"
@@ -215,6 +216,72 @@ bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
 // altitude (twice its area over its longest edge).
 constexpr double kMaxRise = 0.5;
 
+// Rounds of shrinking overlapping cells (each halves their reach).
+constexpr int kOverlapRounds = 8;
+
+// Per triangle: its cell overlaps the cell of a triangle it shares no vertex with, unless the
+// two triangles themselves (their flat cores) do. Candidate
+// pairs from a uniform grid of the cells' boxes (spacing: the mean edge length).
+std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<ConvexCell>& cells,
+                                   const std::vector<ConvexCell>& flatCores) {
+  const size_t n = cells.size();
+  std::vector<char> out(n, 0);
+  const double spacing = mesh.meanEdgeLength();
+  if (!(spacing > 0.0)) return out;
+  std::vector<Bounds3> boxes(n);
+  Bounds3 all;
+  for (size_t t = 0; t < n; ++t) {
+    boxes[t] = cells[t].bounds();
+    if (!boxes[t].empty()) all.extend(boxes[t]);
+  }
+  if (all.empty()) return out;
+  using Key = std::array<int64_t, 3>;
+  std::map<Key, std::vector<uint32_t>> grid;
+  const auto cellOf = [&](const Vec3& p) {
+    const Vec3 r = (p - all.lo) / spacing;
+    return Key{int64_t(std::floor(r.x())), int64_t(std::floor(r.y())), int64_t(std::floor(r.z()))};
+  };
+  for (size_t t = 0; t < n; ++t) {
+    if (boxes[t].empty()) continue;
+    const Key lo = cellOf(boxes[t].lo), hi = cellOf(boxes[t].hi);
+    if ((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1) > 4096) {
+      out[t] = 1;  // a cell far larger than the mesh's triangles: shrink it
+      continue;
+    }
+    for (int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t z = lo[2]; z <= hi[2]; ++z) grid[{x, y, z}].push_back(uint32_t(t));
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (const auto& [key, list] : grid)
+    for (size_t i = 0; i < list.size(); ++i)
+      for (size_t j = i + 1; j < list.size(); ++j) {
+        const uint32_t a = std::min(list[i], list[j]), b = std::max(list[i], list[j]);
+        bool shared = false;
+        for (uint32_t va : mesh.triangles[a])
+          for (uint32_t vb : mesh.triangles[b]) shared |= va == vb;
+        if (shared) continue;
+        const Bounds3& ba = boxes[a];
+        const Bounds3& bb = boxes[b];
+        if ((ba.hi.array() < bb.lo.array()).any() || (bb.hi.array() < ba.lo.array()).any())
+          continue;
+        // Test each pair once: in the grid cell of the overlap's lower corner.
+        if (cellOf(ba.lo.cwiseMax(bb.lo)) != key) continue;
+        pairs.emplace_back(a, b);
+      }
+  std::vector<char> hit(pairs.size(), 0);
+  tbb::parallel_for(size_t(0), pairs.size(), [&](size_t i) {
+    const auto [a, b] = pairs[i];
+    const double tolerance = 1e-9 * std::min(mesh.meanEdgeLength(a), mesh.meanEdgeLength(b));
+    // Triangles that cross each other (or nearly) keep crossing whatever their patches do.
+    hit[i] = cellsOverlap(cells[a], cells[b], tolerance) &&
+             !cellsOverlap(flatCores[a], flatCores[b], tolerance);
+  });
+  for (size_t i = 0; i < pairs.size(); ++i)
+    if (hit[i]) out[pairs[i].first] = out[pairs[i].second] = 1;
+  return out;
+}
+
 // Blends of the corner normals towards the face normal tried before the flat plane.
 constexpr double kBlends[] = {0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.95};
 
@@ -284,12 +351,61 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     }
     patch.planeCount = 3;
   });
-  tbb::parallel_for(size_t(0), m.triangleCount(),
-                    [&](size_t t) { choosePatch(t, patches_[t].q, pencils[t], cells[t]); });
+  // The fits (moved along their pencils), kept for the rounds below.
+  std::vector<QuadricCoeffs> fitted(m.triangleCount());
+  for (size_t t = 0; t < m.triangleCount(); ++t) fitted[t] = patches_[t].q;
+  std::vector<double> reach(m.triangleCount(), kInfinity);
+  std::vector<char> redo(m.triangleCount(), 1);
+  std::vector<ConvexCell> flatCores;
+  // Cells of triangles that share no vertex must not overlap (thin parts, such as a plate
+  // thinner than its triangles: a sheet of one side would otherwise reach through the other's):
+  // each round halves the reach of the cells that do, and chooses their patches again.
+  for (int round = 0; round < kOverlapRounds; ++round) {
+    tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+      if (redo[t]) choosePatch(t, fitted[t], pencils[t], reach[t], cells[t]);
+    });
+    if (flatCores.empty()) {
+      flatCores.resize(m.triangleCount());
+      tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+        if (cells[t].empty()) return;
+        const QuadricPatch& patch = patches_[t];
+        const Vec3& n = frames_[t].faceNormal;
+        const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
+        const double thin = 1e-6 * m.meanEdgeLength(t);
+        std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + 3);
+        planes.push_back(Vec4(n.x(), n.y(), n.z(), -h + thin));
+        planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + thin));
+        flatCores[t] = makeConvexCell(planes, cells[t].tolerance);
+      });
+    }
+    // The cores: each cell cut down to the heights of its patch and of the region between
+    // the patch and the triangle (what the patch and its bridges can reach).
+    std::vector<ConvexCell> cores(m.triangleCount());
+    tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+      if (cells[t].empty()) return;
+      const Frame& frame = frames_[t];
+      const QuadricPatch& patch = patches_[t];
+      const Vec3& n = frame.faceNormal;
+      const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
+      std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + 3);
+      planes.push_back(Vec4(n.x(), n.y(), n.z(), -h - frame.coreLo));
+      planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + frame.coreHi));
+      cores[t] = makeConvexCell(planes, cells[t].tolerance);
+    });
+    const std::vector<char> overlapping = overlappingCells(m, cores, flatCores);
+    bool any = false;
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+      redo[t] = overlapping[t];
+      if (overlapping[t]) reach[t] = 0.5 * frames_[t].reach;
+      any |= overlapping[t];
+    }
+    if (!any) break;
+  }
   addBridges(topo, cells);
 }
 
-bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, ConvexCell& cell) {
+bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double reach,
+                                     ConvexCell& cell) {
   const TriangleMesh& m = mesh();
   Frame& frame = frames_[t];
   QuadricPatch& patch = patches_[t];
@@ -364,6 +480,12 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, ConvexCel
     if (!lowOk || !upOk) continue;
     patch.bounds = quadricBoundsInCell(q, cell);
     if (patch.bounds.empty()) return false;
+    // The core: the heights of the sheet and of the region between it and the triangle.
+    const auto [sLo, sHi] = quadricRangeInCell(q, cell, n);
+    frame.coreLo = std::min(0.0, sLo - n.dot(centre)) - 1e-6 * scale;
+    frame.coreHi = std::max(0.0, sHi - n.dot(centre)) + 1e-6 * scale;
+    frame.reach = std::max(-frame.coreLo, frame.coreHi);
+    if (!(frame.reach <= reach)) return false;
     patch.bounds.inflate(1e-7 * scale + tolerance);
     // Covers its triangle: lines along the face normal through the triangle's inner lattice
     // points meet it within a mean edge length.
@@ -380,7 +502,7 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, ConvexCel
   return false;
 }
 
-void RobustImplicitModel::makeFlat(size_t t, ConvexCell& cell) {
+void RobustImplicitModel::makeFlat(size_t t, double reach, ConvexCell& cell) {
   const TriangleMesh& m = mesh();
   Frame& frame = frames_[t];
   QuadricPatch& patch = patches_[t];
@@ -400,6 +522,9 @@ void RobustImplicitModel::makeFlat(size_t t, ConvexCell& cell) {
     longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
   const bool degenerate = !(m.faceCross(t).norm() > 1e-10 * longest * longest);
   patch.base = Vec4::Zero();
+  frame.reach = 1e-6 * scale;
+  frame.coreLo = -frame.reach;
+  frame.coreHi = frame.reach;
   const double slab = 0.01 * scale;
   patch.planes[3] << n, -n.dot(centre) + slab;
   patch.planes[4] << -n, n.dot(centre) + slab;
@@ -424,7 +549,7 @@ void RobustImplicitModel::makeFlat(size_t t, ConvexCell& cell) {
 }
 
 void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
-                                      const QuadricCoeffs& pencil, ConvexCell& cell) {
+                                      const QuadricCoeffs& pencil, double reach, ConvexCell& cell) {
   const TriangleMesh& m = mesh();
   Frame& frame = frames_[t];
   const Vec3& n = frame.faceNormal;
@@ -445,9 +570,9 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
     longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
   if (m.faceCross(t).norm() > 1e-10 * longest * longest) {
     // The fit (moved along its pencil by the mesh-wide steps), then its graph member.
-    if (tryQuadric(t, fitted, cell)) return finish(0.0);
+    if (tryQuadric(t, fitted, reach, cell)) return finish(0.0);
     QuadricCoeffs graph = fitted;
-    if (graphMember(pencil, n, graph) && tryQuadric(t, graph, cell)) return finish(0.0);
+    if (graphMember(pencil, n, graph) && tryQuadric(t, graph, reach, cell)) return finish(0.0);
     // Corner normals blended towards the face normal: corners stay exact, the normals move
     // as little as the checks allow.
     for (double blend : kBlends) {
@@ -460,12 +585,13 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
         data.arcMidpoint[k] = edgeArcMidpoint(data.position[k], data.normal[k],
                                               data.position[(k + 1) % 3], data.normal[(k + 1) % 3]);
       const QuadricFit fit = fitQuadric(data);
-      if (tryQuadric(t, fit.q, cell)) return finish(blend);
+      if (tryQuadric(t, fit.q, reach, cell)) return finish(blend);
       QuadricCoeffs member = fit.q;
-      if (graphMember(fit.pencil, n, member) && tryQuadric(t, member, cell)) return finish(blend);
+      if (graphMember(fit.pencil, n, member) && tryQuadric(t, member, reach, cell))
+        return finish(blend);
     }
   }
-  makeFlat(t, cell);
+  makeFlat(t, reach, cell);
   finish(1.0);
 }
 

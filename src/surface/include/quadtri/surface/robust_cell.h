@@ -36,6 +36,11 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance);
 /// other candidates cover.
 Bounds3 quadricBoundsInCell(const QuadricCoeffs& q, const ConvexCell& cell);
 
+/// Least and greatest dir·x over {q = 0} ∩ cell ({+inf, -inf} when they do not meet), from
+/// the same candidates as quadricBoundsInCell.
+std::pair<double, double> quadricRangeInCell(const QuadricCoeffs& q, const ConvexCell& cell,
+                                             const Vec3& dir);
+
 /// Exact axis-aligned bounds of {x on face f of the cell : (sign·q(x) < 0) != (base·x < 0)}:
 /// the part of the face between the quadric's conic and the base plane's line. Empty where
 /// the two agree on the whole face.
@@ -45,6 +50,11 @@ Bounds3 betweenBoundsOnFace(const QuadricCoeffs& q, double sign, const Vec4& bas
 /// Least and greatest value of q over the polygon of face f (exact: vertices, extremes along
 /// its edges and the conic's centre when inside). {+inf, -inf} for a face without polygon.
 std::pair<double, double> quadricRangeOnFace(const QuadricCoeffs& q, const ConvexCell& cell, int f);
+
+/// True where the interiors of two cells overlap by more than `tolerance` (separating axis
+/// test over both cells' face normals and the cross products of their edges; cells that only
+/// touch do not overlap).
+bool cellsOverlap(const ConvexCell& a, const ConvexCell& b, double tolerance);
 
 /// Value of q along the line o + s·d: the coefficients (a, b, c) of a s² + b s + c.
 void quadricAlongLine(const QuadricCoeffs& q, const Vec3& o, const Vec3& d, double& a, double& b,

@@ -42,6 +42,12 @@ namespace quadtri {
 /// closed solid for any data; edges where the two sides meet exactly (data from a quadric)
 /// need no bridge.
 ///
+/// The cores of two cells whose triangles share no vertex (each cell cut down to the heights
+/// of its patch and of the region between the patch and the triangle) must not overlap, unless
+/// the triangles themselves cross: where they do (thin parts, a plate thinner than its
+/// triangles) the patch of one side would reach through the other's. Such patches are chosen
+/// again, in rounds, each allowed half the reach of the last.
+///
 /// Where the fit fails those checks or does not cover its triangle (normals that no quadric
 /// through the corners follows: folds, averaged normals across sharp edges), the patch falls
 /// back, keeping as much as it can: the pencil's graph member, then fits to corner normals
@@ -86,13 +92,17 @@ class RobustImplicitModel final : public SurfaceModel {
     Vec3 faceNormal;
     double cornerNormalErrorDeg = 0.0;
     double blend = 0.0;  ///< normals blended this far towards the face normal (1: flat)
-    bool flat = false;   ///< fell back to the triangle's plane (see the class comment)
+    /// Heights (along the face normal, from the triangle's plane) between which the patch and
+    /// the region between it and the triangle lie; reach is the larger of their sizes.
+    double coreLo = 0.0, coreHi = 0.0, reach = 0.0;
+    bool flat = false;  ///< fell back to the triangle's plane (see the class comment)
   };
   /// Makes q patch t's quadric if its cell passes the checks of the class comment (and it
   /// covers the triangle); fills `cell` and the patch's slab, orientation and bounds.
-  bool tryQuadric(size_t t, const QuadricCoeffs& q, ConvexCell& cell);
-  void makeFlat(size_t t, ConvexCell& cell);
-  void choosePatch(size_t t, const QuadricCoeffs& fitted, const QuadricCoeffs& pencil,
+  /// `reach` caps how far the patch may reach from the triangle's plane.
+  bool tryQuadric(size_t t, const QuadricCoeffs& q, double reach, ConvexCell& cell);
+  void makeFlat(size_t t, double reach, ConvexCell& cell);
+  void choosePatch(size_t t, const QuadricCoeffs& fitted, const QuadricCoeffs& pencil, double reach,
                    ConvexCell& cell);
   void addBridges(const MeshTopology& topo, const std::vector<ConvexCell>& cells);
 
