@@ -7,8 +7,14 @@
 // edge, face) nearest to the first crossing the two disagree on. For every quadric root near
 // that point it says which test kept or dropped it (edge plane, slab, bounds, facing, bridge
 // classification). It also reports hits farther than F mean edge lengths from their triangles
-// (stray sheets). Not a test: a tool for finding causes.
+// (stray sheets), the widest gaps between neighbours' boundaries along each edge (in units of
+// crackRate's merge distance), the lines whose crossings do not alternate between entering and
+// leaving, and how many cracked lines are even when each cluster of hits within the merge
+// distance counts its changes of direction (crackRate counts a mixed cluster as two). Not a
+// test: a tool for finding causes.
 #include <fmt/core.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -155,8 +161,10 @@ int main(int argc, char** argv) {
   size_t lines = 100000, show = 10;
   uint64_t seed = 1;
   double strayFactor = 1.0;
+  std::vector<size_t> dump;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--dump") dump.push_back(std::stoull(value));
     if (key == "--lines") lines = std::stoull(value);
     if (key == "--seed") seed = std::stoull(value);
     if (key == "--normals") normals = value;
@@ -169,22 +177,79 @@ int main(int argc, char** argv) {
   const RobustImplicitModel model(mesh);
   const auto& all = model.renderPatches();
   const size_t patchCount = model.quadricPatches().size();
-  fmt::print("{}: {} triangles, {} bridges, {} flat ({:.3f}%)\n", spec, m.triangleCount(),
-             model.bridgeCount(), model.flatCount(),
-             100.0 * double(model.flatCount()) / double(m.triangleCount()));
+  fmt::print("{}: {} triangles, {} bridges, {} flat ({:.3f}%), {} blended, {}\n", spec,
+             m.triangleCount(), model.bridgeCount(), model.flatCount(),
+             100.0 * double(model.flatCount()) / double(m.triangleCount()), model.blendedCount(),
+             MeshTopology(m).isClosed() ? "closed" : "open");
 
+  for (size_t t : dump) {
+    const QuadricPatch& p = all[t];
+    fmt::print("triangle {}: vertices {} {} {}, flat {}, blend {}, orientation {}\n", t,
+               m.triangles[t][0], m.triangles[t][1], m.triangles[t][2], model.isFlat(t),
+               model.blend(t), p.orientation);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 c = m.corner(t, k), n = m.cornerNormal(t, k);
+      fmt::print("  corner ({:.9g},{:.9g},{:.9g}) normal ({:.6f},{:.6f},{:.6f})\n", c.x(), c.y(),
+                 c.z(), n.x(), n.y(), n.z());
+    }
+    fmt::print("  q {}\n  base ({:.6g},{:.6g},{:.6g},{:.6g})\n", fmt::join(p.q, " "), p.base[0],
+               p.base[1], p.base[2], p.base[3]);
+    for (int k = 0; k < p.planeCount; ++k)
+      fmt::print("  plane {} ({:.6g},{:.6g},{:.6g},{:.6g})\n", k, p.planes[k][0], p.planes[k][1],
+                 p.planes[k][2], p.planes[k][3]);
+    fmt::print("  bounds ({:.6g},{:.6g},{:.6g}) ({:.6g},{:.6g},{:.6g})\n", p.bounds.lo.x(),
+               p.bounds.lo.y(), p.bounds.lo.z(), p.bounds.hi.x(), p.bounds.hi.y(), p.bounds.hi.z());
+  }
   Accel accel(Accel::Options{true, true});
   accel.addQuadricPatches(all);
   accel.commit();
   Bounds3 box = accel.bounds();
   const double diagonal = box.diagonal().norm();
+  {
+    // Widest gap between the two sides' boundaries along each interior edge (13 samples), in
+    // units of the crack rate's merge distance (1e-7 of the diagonal).
+    const MeshTopology topo(m);
+    const Vec2 cornerUv[3] = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+    size_t histogram[8] = {};
+    for (const Edge& edge : topo.edges) {
+      if (edge.sides.size() != 2) continue;
+      const auto [ta, ka] = edge.sides[0];
+      const auto [tb, kb] = edge.sides[1];
+      const bool sameWay = m.triangles[ta][ka] == m.triangles[tb][kb];
+      double gap = 0;
+      for (int j = 0; j <= 12; ++j) {
+        const double sa = j / 12.0, sb = sameWay ? sa : 1 - sa;
+        const Vec2 ua = cornerUv[ka] + sa * (cornerUv[(ka + 1) % 3] - cornerUv[ka]);
+        const Vec2 ub = cornerUv[kb] + sb * (cornerUv[(kb + 1) % 3] - cornerUv[kb]);
+        gap = std::max(gap, (model.evaluate(ta, ua.x(), ua.y()).position -
+                             model.evaluate(tb, ub.x(), ub.y()).position)
+                                .norm());
+      }
+      const double r = gap / (1e-7 * diagonal);
+      int bin = r < 1e-3   ? 0
+                : r < 1e-1 ? 1
+                : r < 1    ? 2
+                : r < 10   ? 3
+                : r < 100  ? 4
+                : r < 1e3  ? 5
+                : r < 1e4  ? 6
+                           : 7;
+      ++histogram[bin];
+    }
+    fmt::print(
+        "edge gaps / merge distance: <1e-3 {}, <0.1 {}, <1 {}, <10 {}, <100 {}, <1e3 {}, <1e4 {}, "
+        "more {}\n",
+        histogram[0], histogram[1], histogram[2], histogram[3], histogram[4], histogram[5],
+        histogram[6], histogram[7]);
+  }
   box.inflate(0.05 * diagonal);
   const double merge = 1e-7 * diagonal;
   const double reach = box.diagonal().norm();
 
   std::vector<size_t> cracked;
+  size_t evenByAlternations = 0;
   std::mutex mutex;
-  std::atomic<size_t> stray{0};
+  std::atomic<size_t> stray{0}, nonAlternating{0};
   double worstStray = 0;
   size_t worstStrayPrim = 0;
   tbb::parallel_for(size_t(0), lines, [&](size_t i) {
@@ -235,12 +300,45 @@ int main(int argc, char** argv) {
         }
       }
     }
+    // The same clusters counted by their direction changes: runs of hits crossing the same
+    // way are one crossing (a shared boundary), and each change of direction is another.
+    size_t alternations = 0;
+    for (size_t k = 0; k < line.size();) {
+      size_t j = k + 1, count = 1;
+      for (; j < line.size() && line[j].s - line[j - 1].s < merge; ++j)
+        count += line[j].entering != line[j - 1].entering;
+      alternations += count;
+      k = j;
+    }
+    // Whether the crossings, duplicates within the merge distance collapsed, alternate
+    // between entering and leaving, starting by entering (a surface that bounds a solid
+    // without crossing itself).
+    {
+      bool alternate = true;
+      int last = 0;  // +1 entering, -1 leaving
+      for (size_t k = 0; k < line.size(); ++k) {
+        if (k > 0 && line[k].s - line[k - 1].s < merge && line[k].entering == line[k - 1].entering)
+          continue;
+        const int dir = line[k].entering ? 1 : -1;
+        alternate &= last == 0 ? dir == 1 : dir != last;
+        last = dir;
+      }
+      alternate &= line.empty() || last == -1;
+      if (!alternate) ++nonAlternating;
+    }
     if (crossings % 2 == 1) {
       std::lock_guard lock(mutex);
       cracked.push_back(i);
+      if (alternations % 2 == 0) ++evenByAlternations;
     }
   });
   std::sort(cracked.begin(), cracked.end());
+  fmt::print("lines whose crossings do not alternate between entering and leaving: {}\n",
+             nonAlternating.load());
+  fmt::print(
+      "cracked lines whose hits, counted by direction changes within the merge distance, "
+      "are even: {}\n",
+      evenByAlternations);
   fmt::print(
       "cracked {} of {} lines ({:.3g}); stray hits (> {} edge lengths): {}, worst {:.3g} "
       "(primitive {})\n",
