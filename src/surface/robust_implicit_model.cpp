@@ -216,6 +216,9 @@ bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
 // altitude (twice its area over its longest edge).
 constexpr double kMaxRise = 0.5;
 
+// Corner-normal error (degrees) under which a fit counts as exact (data from a quadric).
+constexpr double kAlignBelowDeg = 1e-6;
+
 // Rounds of shrinking overlapping cells (each halves their reach).
 constexpr int kOverlapRounds = 8;
 
@@ -326,7 +329,13 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   agreeAcrossEdges(m, topo, arcMidpoints, controlPoints, pencils, cornerErrors, patches_);
   tbb::parallel_for(size_t(0), edges.size(), [&](size_t i) {
     const Edge& edge = topo.edges[i];
-    if (edge.sides.size() == 2)
+    // Data from a quadric only (both fits corner-exact): there the plane through the crossing
+    // makes the neighbours meet exactly. On generic data it would tilt planes by up to 30° for
+    // a second-order agreement, and at a sliver's sharp corner two such tilts make its two long
+    // edge planes cross close to the surface, where its neighbours' cells then overlap.
+    if (edge.sides.size() == 2 &&
+        frames_[edge.sides[0].first].cornerNormalErrorDeg < kAlignBelowDeg &&
+        frames_[edge.sides[1].first].cornerNormalErrorDeg < kAlignBelowDeg)
       alignWithCrossing(patches_[edge.sides[0].first].q, patches_[edge.sides[1].first].q,
                         m.positions[edge.a], m.positions[edge.b], edges[i].plane,
                         edges[i].direction);

@@ -21,10 +21,11 @@ namespace quadtri {
 /// across their edges (sparse least squares).
 ///
 /// Each patch lives in a convex cell: three edge planes through the edge's chord, computed once
-/// per mesh edge and handed to the two neighbours with opposite inside sides (the plane of the
-/// line pair a − κb through the edge where that is real, so both patches end on the curve
-/// where their quadrics meet, exactly for data from any quadric; otherwise the thesis' P_ij,
-/// spanned by vj−vi and ni+nj, turned towards the bisector of the two faces), and a slab
+/// per mesh edge and handed to the two neighbours with opposite inside sides (where both fits
+/// are corner-exact, data from a quadric, the plane of the line pair a − κb through the edge,
+/// on which both patches end exactly on the curve where their quadrics meet; otherwise the
+/// thesis' P_ij, spanned by vj−vi and ni+nj; turned away from the faces where it comes within
+/// 10° of one), and a slab
 /// parallel to the triangle around the patch's height range. The cell's section by the
 /// triangle's plane is the triangle.
 ///
