@@ -246,6 +246,12 @@ int main(int argc, char** argv) {
   const double merge = 1e-7 * diagonal;
   const double reach = box.diagonal().norm();
 
+  // The flat triangles, for comparison: lines whose crossings of the mesh itself do not
+  // alternate (an inside-out or self-crossing mesh).
+  Accel flatAccel(Accel::Options{true, true});
+  flatAccel.addTriangles(m);
+  flatAccel.commit();
+  std::atomic<size_t> flatNonAlternating{0};
   std::vector<size_t> cracked;
   size_t evenByAlternations = 0;
   std::mutex mutex;
@@ -310,9 +316,31 @@ int main(int argc, char** argv) {
       alternations += count;
       k = j;
     }
+    {
+      std::vector<RayHit> flatHits;
+      std::vector<std::pair<double, bool>> flatLine;
+      for (const double sign : {1.0, -1.0}) {
+        flatHits.clear();
+        flatAccel.allHits(Ray{p, sign * d, 0.0, reach}, flatHits);
+        for (const RayHit& h : flatHits)
+          flatLine.emplace_back(sign * h.t, h.geometricNormal.dot(d) < 0.0);
+      }
+      std::sort(flatLine.begin(), flatLine.end());
+      bool alternate = true;
+      int last = 0;
+      for (size_t k = 0; k < flatLine.size(); ++k) {
+        if (k > 0 && flatLine[k].first - flatLine[k - 1].first < merge &&
+            flatLine[k].second == flatLine[k - 1].second)
+          continue;
+        const int dir = flatLine[k].second ? 1 : -1;
+        alternate &= last == 0 || dir != last;
+        last = dir;
+      }
+      if (!alternate) ++flatNonAlternating;
+    }
     // Whether the crossings, duplicates within the merge distance collapsed, alternate
-    // between entering and leaving, starting by entering (a surface that bounds a solid
-    // without crossing itself).
+    // between entering and leaving (a surface that bounds a solid without crossing itself,
+    // either way out).
     {
       bool alternate = true;
       int last = 0;  // +1 entering, -1 leaving
@@ -320,10 +348,9 @@ int main(int argc, char** argv) {
         if (k > 0 && line[k].s - line[k - 1].s < merge && line[k].entering == line[k - 1].entering)
           continue;
         const int dir = line[k].entering ? 1 : -1;
-        alternate &= last == 0 ? dir == 1 : dir != last;
+        alternate &= last == 0 || dir != last;
         last = dir;
       }
-      alternate &= line.empty() || last == -1;
       if (!alternate) ++nonAlternating;
     }
     if (crossings % 2 == 1) {
@@ -333,8 +360,10 @@ int main(int argc, char** argv) {
     }
   });
   std::sort(cracked.begin(), cracked.end());
-  fmt::print("lines whose crossings do not alternate between entering and leaving: {}\n",
-             nonAlternating.load());
+  fmt::print(
+      "lines whose crossings do not alternate between entering and leaving: {} (flat "
+      "triangles: {})\n",
+      nonAlternating.load(), flatNonAlternating.load());
   fmt::print(
       "cracked lines whose hits, counted by direction changes within the merge distance, "
       "are even: {}\n",
