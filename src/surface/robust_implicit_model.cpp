@@ -430,33 +430,14 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
   const double scale = m.meanEdgeLength(t);
   const double tolerance = 1e-10 * (scale + centre.norm());
 
-  // Heights of the patch over its triangle, sampled, and how far it may stray between samples:
-  // the quadric's Hessian is constant (2M), so |Hessian|/|∇q| bounds its curvature.
-  const int ns = kBoundSamples;
-  std::vector<Vec3> grid;
-  grid.reserve((ns + 1) * (ns + 2) / 2);
-  const auto index = [ns](int i, int j) { return size_t(j * (ns + 1) - j * (j - 1) / 2 + i); };
-  Mat3 hessian;
-  hessian << 2 * q[0], q[3], q[4], q[3], 2 * q[1], q[5], q[4], q[5], 2 * q[2];
-  const double hessianNorm = hessian.norm();
-  double curvature = 0.0, hmin = 0.0, hmax = 0.0;
-  for (int j = 0; j <= ns; ++j)
-    for (int i = 0; i + j <= ns; ++i) {
-      const Vec3 p = evaluate(t, double(i) / ns, double(j) / ns).position;
-      grid.push_back(p);
-      const double h = n.dot(p - centre);
-      hmin = std::min(hmin, h);
-      hmax = std::max(hmax, h);
-      const double g = quadricGradient(q, p).norm();
-      curvature = std::max(curvature, g > 0.0 ? hessianNorm / g : kInfinity);
+  // Heights of the patch over its triangle, sampled.
+  double hmin = 0.0, hmax = 0.0;
+  for (int j = 0; j <= kBoundSamples; ++j)
+    for (int i = 0; i + j <= kBoundSamples; ++i) {
+      const Vec3 p = evaluate(t, double(i) / kBoundSamples, double(j) / kBoundSamples).position;
+      hmin = std::min(hmin, n.dot(p - centre));
+      hmax = std::max(hmax, n.dot(p - centre));
     }
-  double spacing = 0.0;
-  for (int j = 0; j <= ns; ++j)
-    for (int i = 0; i + j < ns; ++i) {
-      spacing = std::max(spacing, (grid[index(i + 1, j)] - grid[index(i, j)]).norm());
-      spacing = std::max(spacing, (grid[index(i, j + 1)] - grid[index(i, j)]).norm());
-    }
-  const double margin = std::min(0.25 * curvature * spacing * spacing, 0.1 * scale) + 1e-4 * scale;
   // No farther from the triangle than a share of its least altitude: fits to normals that no
   // surface near the triangle has (averaged across a sharp edge, on a sliver) bulge far out,
   // into other parts of the mesh.
@@ -466,8 +447,10 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
   const double altitude = m.faceCross(t).norm() / longest;
   if (!(std::max(hmax, -hmin) <= kMaxRise * altitude)) return false;
 
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    const double slab = (0.25 * (hmax - hmin) + margin + 0.01 * scale) * std::pow(3.0, attempt);
+  // The slab around the sampled heights, as tight as the exact checks below allow (a larger
+  // cell only makes the gradient check harder): grown fourfold while the sheet leaves it.
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    const double slab = (0.05 * (hmax - hmin) + 1e-3 * scale) * std::pow(4.0, attempt);
     const double lo = hmin - slab, hi = hmax + slab;
     patch.planes[3] << n, -n.dot(centre) - lo;
     patch.planes[4] << -n, n.dot(centre) + hi;

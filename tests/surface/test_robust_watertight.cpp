@@ -362,3 +362,49 @@ TEST(RobustWatertight, FaceWhoseNormalsPointInside) {
 
 }  // namespace
 }  // namespace quadtri
+
+namespace quadtri {
+namespace {
+
+std::shared_ptr<const TriangleMesh> withAverageNormals(const char* spec) {
+  TriangleMesh mesh = parseBuiltinSpec(spec)->mesh;
+  computeVertexNormals(mesh, NormalSource::Average);
+  return std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
+TEST(RobustFallback, ACoarseTorusKeepsItsFits) {
+  // 8 × 6 quads, averaged normals (~30° from the faces). With slabs sized by a sampled
+  // curvature bound (up to a tenth of an edge beyond the patch), the cells reached where the
+  // fits' gradients turn, and 8 of its 96 patches fell back to their plane, 8 more to blended
+  // normals; slabs grown from tight only while the sheet leaves them keep every fit.
+  const auto mesh = withAverageNormals("torus:1,0.5,8,6");
+  const RobustImplicitModel model(mesh);
+  EXPECT_EQ(model.flatCount(), 0u);
+  EXPECT_EQ(model.blendedCount(), 0u);
+  EXPECT_EQ(crackedLines(mesh, 100000), 0u);
+}
+
+TEST(RobustFallback, FewPatchesOfTheGenus2SurfaceFallBack) {
+  // Averaged normals on the genus-2 surface's irregular mesh (5,684 triangles, slivers): one
+  // patch falls back to its plane (14 before the tight slabs), under 2% are blended.
+  const auto mesh = withAverageNormals("genus2");
+  const RobustImplicitModel model(mesh);
+  EXPECT_LE(model.flatCount(), 1u);
+  EXPECT_LT(double(model.blendedCount()), 0.02 * double(mesh->triangleCount()));
+  // Whatever candidate a patch took, its corners are exact (to the round-off of fits on its
+  // slivers, 4e-8 of an edge at worst), and a flat one is its plane.
+  for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+    const QuadricPatch& p = model.quadricPatches()[t];
+    const double scale = mesh->meanEdgeLength(t);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 x = mesh->corner(t, k);
+      EXPECT_LT(std::abs(evalQuadric(p.q, x)) / quadricGradient(p.q, x).norm(), 1e-7 * scale) << t;
+    }
+    if (model.isFlat(t)) {
+      EXPECT_NEAR(quadricGradient(p.q, Vec3::Zero()).norm(), 1.0, 1e-12);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace quadtri
