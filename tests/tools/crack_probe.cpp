@@ -517,6 +517,24 @@ int main(int argc, char** argv) {
       if (cause.empty()) cause = " no partner root";
       if (!all[j].isBridge() && model.isFlat(j)) cause += " (flat)";
     }
+    // For a bridge hit in a cluster of three or more within the merge distance: where along
+    // its edge it lies (0 and 1 at the edge's ends) and the gap between the two sides there.
+    for (size_t k = 0; k + 2 < line.size(); ++k) {
+      if (!(line[k + 2].s - line[k].s < 2 * merge)) continue;
+      for (size_t j = k; j < k + 3; ++j) {
+        const QuadricPatch& prim = all[line[j].primitive];
+        if (!prim.isBridge()) continue;
+        const size_t ta = size_t(prim.joins[0]), tb = size_t(prim.joins[1]);
+        const int ka = prim.joinPlanes[0];
+        const Vec3 a = m.corner(ta, ka), b = m.corner(ta, (ka + 1) % 3);
+        const Vec3 x = p + line[j].s * d;
+        const double along = (x - a).dot(b - a) / (b - a).squaredNorm();
+        fmt::print("triple: line {} bridge ({},{}) at edge parameter {:.4f}, {:.3g} edge lengths "
+                   "from the nearer end; hits spread {:.3g} merge distances\n",
+                   i, ta, tb, along, std::min(along, 1 - along), (line[k + 2].s - line[k].s) / merge);
+        (void)tb;
+      }
+    }
     ++featureCounts[feature + cause];
     if (shown >= show) continue;
     ++shown;
