@@ -529,9 +529,10 @@ int main(int argc, char** argv) {
         const Vec3 a = m.corner(ta, ka), b = m.corner(ta, (ka + 1) % 3);
         const Vec3 x = p + line[j].s * d;
         const double along = (x - a).dot(b - a) / (b - a).squaredNorm();
-        fmt::print("triple: line {} bridge ({},{}) at edge parameter {:.4f}, {:.3g} edge lengths "
-                   "from the nearer end; hits spread {:.3g} merge distances\n",
-                   i, ta, tb, along, std::min(along, 1 - along), (line[k + 2].s - line[k].s) / merge);
+        fmt::print(
+            "triple: line {} bridge ({},{}) at edge parameter {:.4f}, {:.3g} edge lengths "
+            "from the nearer end; hits spread {:.3g} merge distances\n",
+            i, ta, tb, along, std::min(along, 1 - along), (line[k + 2].s - line[k].s) / merge);
         (void)tb;
       }
     }
