@@ -1,13 +1,13 @@
-// `quadtri analyze MESH --model NAME|all [--json]`: the DESIGN.md §4 metrics of each model.
+// `quadtri analyze MESH --model NAME|all [--json]`: the docs/DESIGN.md §4 metrics of each model.
 #include <fmt/core.h>
 
 #include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "commands.h"
 #include "quadtri/analysis/heatmaps.h"
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/analysis/tessellation_view.h"
-#include "commands.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/mesh_io.h"
 
