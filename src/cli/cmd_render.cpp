@@ -69,6 +69,7 @@ Action addRenderCommand(CLI::App& app) {
       fail("--time {}: expected a positive number of seconds", opt->timeLimit);
 
     SceneDescription description = loadSceneDescription(opt->scene, defines);
+    for (const std::string& note : description.notes) fmt::print(stderr, "{}\n", note);
     for (const auto& [name, value] : defines)
       if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
           description.defaultNames.end())

@@ -129,12 +129,19 @@ BuiltScene buildScene(const SceneDescription& description,
   camera.farClip = sensor.farClip;
   camera.width = sensor.film.width;
   camera.height = sensor.film.height;
+  camera.cropX = sensor.film.cropX;
+  camera.cropY = sensor.film.cropY;
+  camera.cropWidth = sensor.film.cropWidth;
+  camera.cropHeight = sensor.film.cropHeight;
+  camera.principalPointOffset = sensor.principalPointOffset;
   at(sensor.location, toString(sensor), [&] { scene.setCamera(PerspectiveCamera(camera)); });
   built.options.samplesPerPixel = sensor.sampler.sampleCount;
   built.options.seed = uint64_t(uint32_t(sensor.sampler.seed));
-  built.options.filter.kind = sensor.film.filter.type == FilterDesc::Type::Box
-                                  ? ReconstructionFilter::Kind::Box
-                                  : ReconstructionFilter::Kind::Gaussian;
+  built.options.filter.kind =
+      sensor.film.filter.type == FilterDesc::Type::Box    ? ReconstructionFilter::Kind::Box
+      : sensor.film.filter.type == FilterDesc::Type::Tent ? ReconstructionFilter::Kind::Tent
+                                                          : ReconstructionFilter::Kind::Gaussian;
+  built.options.filter.tentRadius = sensor.film.filter.radius;
   built.options.filter.stddev = sensor.film.filter.stddev;
   built.integrator = at(description.integrator.location, toString(description.integrator), [&] {
     return makeIntegrator(description.integrator, sensor.sampler.sampleCount);

@@ -68,6 +68,7 @@ ShapeDesc parseShape(const XmlElement& element, SceneParseState& state) {
   if (type == "obj" || type == "ply") {
     desc.type = type == "obj" ? ShapeDesc::Type::Obj : ShapeDesc::Type::Ply;
     parseMeshParameters(props, desc);
+    props.ignore("flip_tex_coords", "quadtri reads no texture coordinates", state.scene.notes);
   } else if (type == "rectangle") {
     desc.type = ShapeDesc::Type::Rectangle;
   } else if (type == "cube") {
@@ -91,7 +92,7 @@ ShapeDesc parseShape(const XmlElement& element, SceneParseState& state) {
   }
   desc.bsdf = shapeBsdf(props, state);
   if (const std::optional<XmlElement> emitter = props.takeOptional("emitter"))
-    desc.areaRadiance = parseAreaEmitter(*emitter);
+    desc.areaRadiance = parseAreaEmitter(*emitter, state.scene.notes);
   props.finish();
   state.declareId(desc.id, element);
   return desc;

@@ -16,17 +16,22 @@
 
 namespace quadtri {
 
-/// Pixel reconstruction filter: box (one pixel wide) or Gaussian of standard deviation stddev
-/// pixels (Mitsuba's default, stddev 0.5, truncated at 4 stddev).
+/// Pixel reconstruction filter: box (one pixel wide), tent of radius `radius` pixels (default
+/// 1) or Gaussian of standard deviation stddev pixels (Mitsuba's default, stddev 0.5,
+/// truncated at 4 stddev).
 struct FilterDesc {
-  enum class Type { Box, Gaussian } type = Type::Gaussian;
+  enum class Type { Box, Gaussian, Tent } type = Type::Gaussian;
   double stddev = 0.5;
+  double radius = 1.0;
 };
 
 /// hdrfilm: image size in pixels and its reconstruction filter.
 struct FilmDesc {
   int width = 768;
   int height = 576;
+  /// crop_offset_x/y, crop_width/height: the window of the film that is rendered (the whole
+  /// film by default); the image has the window's size.
+  int cropX = 0, cropY = 0, cropWidth = 0, cropHeight = 0;
   FilterDesc filter;
   std::string location;
 };
@@ -46,6 +51,9 @@ struct SensorDesc {
   FovAxis fovAxis = FovAxis::X;
   double nearClip = 1e-2;
   double farClip = 1e4;
+  /// principal_point_offset_x/y: the optical axis' offset from the film's centre, in units
+  /// of the film's width and height.
+  Vec2 principalPointOffset = Vec2::Zero();
   FilmDesc film;
   SamplerDesc sampler;
   std::string location;
@@ -132,6 +140,9 @@ struct SceneDescription {
   std::vector<ShapeDesc> shapes;
   /// Names of the file's <default> elements (the parameters -D is meant to override).
   std::vector<std::string> defaultNames;
+  /// "FILE:LINE: ..." for every property accepted without effect on quadtri's image (for
+  /// example hdrfilm's pixel_format): the CLI prints them as notes.
+  std::vector<std::string> notes;
 };
 
 /// Sets the samples per pixel (`render --spp`): the sampler's sample_count and, for an adaptive
