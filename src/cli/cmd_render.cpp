@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
 #include "quadtri/scene/scene_builder.h"
@@ -34,6 +35,7 @@ Action addRenderCommand(CLI::App& app) {
     int spp = 0, threads = 0;
     double timeLimit = 0.0;
     std::optional<uint64_t> seed;
+    NormalFlags normals;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -51,6 +53,11 @@ Action addRenderCommand(CLI::App& app) {
   CLI::Option* timeOption = sub->add_option("--time", opt->timeLimit,
                                             "Time budget in seconds; unfinished pixels stay black");
   sub->add_option("--seed", opt->seed, "Sampler seed (overrides the sampler)");
+  addNormalFlags(sub, opt->normals,
+                 "Shading normals of every obj/ply shape, overriding the scene's: file (as "
+                 "given; angle-weighted and split at --crease-angle when missing), average "
+                 "(thesis eq. 2.8) or angle (angle-weighted, split at --crease-angle)",
+                 "");
   return [opt, sppOption, timeOption]() {
     const bool sppGiven = sppOption->count() > 0, timeGiven = timeOption->count() > 0;
     SceneDefines defines;
@@ -78,6 +85,7 @@ Action addRenderCommand(CLI::App& app) {
                    "a ${} in the file\n",
                    name, value, opt->scene, name, name);
     if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
+    overrideNormals(description, opt->normals.sourceOverride(), opt->normals.creaseOverride());
     BuiltScene built =
         buildScene(description, opt->model.empty() ? std::nullopt : std::optional(opt->model));
     RenderOptions options = built.options;

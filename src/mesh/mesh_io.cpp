@@ -135,7 +135,7 @@ void validateObj(const std::filesystem::path& path) {
 
 }  // namespace
 
-TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
+TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals) {
   const std::string name = path.string();
   if (!std::filesystem::exists(path)) fail("{}: no such file", name);
   const std::string ext = lowerExtension(path);
@@ -193,8 +193,7 @@ TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
     }
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
-  if (!allHaveNormals || source != NormalSource::File)
-    computeVertexNormals(mesh, source == NormalSource::File ? NormalSource::Average : source);
+  applyNormals(mesh, normals);
   mesh.validate(name);
   return mesh;
 }
@@ -270,10 +269,10 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
 
 namespace quadtri {
 
-BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source) {
+BuiltinMesh loadMeshSpec(const std::string& spec, const NormalOptions& normals) {
   if (std::filesystem::exists(spec)) {
     BuiltinMesh b;
-    b.mesh = loadMesh(spec, source);
+    b.mesh = loadMesh(spec, normals);
     b.description = std::filesystem::path(spec).filename().string();
     return b;
   }
@@ -282,7 +281,7 @@ BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source) {
     fail("{}: no such file, and not a built-in shape (expected a mesh file or one of {})", spec,
          fmt::join(builtinShapeNames(), ", "));
   }
-  if (source != NormalSource::File) computeVertexNormals(b->mesh, source);
+  applyNormals(b->mesh, normals);  // File keeps the shape's analytic normals
   return std::move(*b);
 }
 

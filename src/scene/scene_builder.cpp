@@ -171,7 +171,7 @@ BuiltScene buildScene(const SceneDescription& description,
       }
       const bool isFile = s.type == ShapeDesc::Type::Obj || s.type == ShapeDesc::Type::Ply;
       TriangleMesh mesh =
-          isFile ? loadMesh(s.filename)
+          isFile ? loadMesh(s.filename, s.normals)
                  : (s.type == ShapeDesc::Type::Rectangle ? rectangleMesh() : cubeMesh());
       if (s.faceNormals) {
         mesh.normals.clear();

@@ -210,4 +210,14 @@ void overrideSamplesPerPixel(SceneDescription& scene, int samplesPerPixel) {
   integrator.minSamples = std::min(integrator.minSamples, samplesPerPixel);
 }
 
+void overrideNormals(SceneDescription& scene, std::optional<NormalSource> source,
+                     std::optional<double> creaseAngleDeg) {
+  if (creaseAngleDeg) checkCreaseAngle(*creaseAngleDeg);
+  for (ShapeDesc& shape : scene.shapes) {
+    if (shape.type != ShapeDesc::Type::Obj && shape.type != ShapeDesc::Type::Ply) continue;
+    if (source) shape.normals.source = *source;
+    if (creaseAngleDeg) shape.normals.creaseAngleDeg = *creaseAngleDeg;
+  }
+}
+
 }  // namespace quadtri

@@ -12,6 +12,7 @@
 
 #include "quadtri/math/color.h"
 #include "quadtri/math/vec.h"
+#include "quadtri/mesh/normals.h"
 #include "quadtri/render/camera.h"
 
 namespace quadtri {
@@ -122,6 +123,9 @@ struct ShapeDesc {
   std::string model = "shading";   ///< obj/ply: a name from modelNames()
   /// obj/ply: "N" or "thesis" for Tessellation::parse; empty for the default.
   std::string tessellation;
+  /// obj/ply: the shading normals (`normals`: file, average or angle; `crease_angle` in
+  /// degrees, for normals computed angle-weighted: a file without normals, or `angle`).
+  NormalOptions normals;
   bool faceNormals = false;
   bool flipNormals = false;
   Mat4 toWorld = Mat4::Identity();
@@ -149,6 +153,11 @@ struct SceneDescription {
 /// integrator, its cap per pixel (min_samples lowered to it where needed). Throws Error below 1,
 /// or below 2 for an adaptive integrator.
 void overrideSamplesPerPixel(SceneDescription& scene, int samplesPerPixel);
+
+/// Sets every obj/ply shape's normals (`render --normals`, `--crease-angle`): `source` where
+/// given, `creaseAngleDeg` where given. Throws Error for an angle outside [0, 180].
+void overrideNormals(SceneDescription& scene, std::optional<NormalSource> source,
+                     std::optional<double> creaseAngleDeg);
 
 /// The parameters in Mitsuba-like syntax, for error messages and logs.
 std::string toString(const SensorDesc& sensor);
