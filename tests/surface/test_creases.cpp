@@ -1,5 +1,5 @@
 // Split normals never open a crack: every welded model builds each edge from data both sides
-// share (creases.h, docs/CREASES.md), measured on the capped cylinder and the cube.
+// share (creases.h, docs/DESIGN.md §11), measured on the capped cylinder and the cube.
 #include <gtest/gtest.h>
 
 #include <random>

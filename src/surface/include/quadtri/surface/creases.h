@@ -1,6 +1,6 @@
 // Edge curves at creases: what the two triangles of a mesh edge share where their normals are
 // split, so every welded model builds the identical boundary curve from both sides
-// (docs/CREASES.md).
+// (docs/DESIGN.md §11).
 #pragma once
 
 #include <array>
