@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/surface/convert_output.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri::cli {
 
@@ -36,9 +37,17 @@ Action addConvertCommand(CLI::App& app) {
                   "(thesis eq. 2.8) or angle (angle-weighted)")
       ->check(CLI::IsMember({"file", "average", "angle"}))
       ->capture_default_str();
-  return [opt]() {
+  const auto maxMemory = addMaxMemoryOption(*sub);
+  return [opt, maxMemory]() {
     const Tessellation tessellation = Tessellation::parse(opt->tessellation);
-    BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals));
+    // The mesh and its model must fit in --max-memory, checked before either is built.
+    MemoryBudget budget;
+    budget.maxBytes = maxMemory();
+    budget.bytesPerTriangle = modelBytesPerTriangle(
+        opt->model, tessellation,
+        std::filesystem::path(opt->output).extension() == ".json" ? ModelUse::ConvertJson
+                                                                  : ModelUse::ConvertMesh);
+    BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals), &budget);
     auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<SurfaceModel> model = makeModel(opt->model, mesh);

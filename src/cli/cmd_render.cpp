@@ -51,7 +51,8 @@ Action addRenderCommand(CLI::App& app) {
   CLI::Option* timeOption = sub->add_option("--time", opt->timeLimit,
                                             "Time budget in seconds; unfinished pixels stay black");
   sub->add_option("--seed", opt->seed, "Sampler seed (overrides the sampler)");
-  return [opt, sppOption, timeOption]() {
+  const auto maxMemory = addMaxMemoryOption(*sub);
+  return [opt, sppOption, timeOption, maxMemory]() {
     const bool sppGiven = sppOption->count() > 0, timeGiven = timeOption->count() > 0;
     SceneDefines defines;
     for (const std::string& d : opt->defines) {
@@ -67,6 +68,7 @@ Action addRenderCommand(CLI::App& app) {
     if (opt->threads < 0) fail("--threads {}: expected 0 (all) or a positive count", opt->threads);
     if (timeGiven && !(opt->timeLimit > 0.0))
       fail("--time {}: expected a positive number of seconds", opt->timeLimit);
+    const uint64_t memoryLimit = maxMemory();
 
     SceneDescription description = loadSceneDescription(opt->scene, defines);
     for (const auto& [name, value] : defines)
@@ -77,8 +79,8 @@ Action addRenderCommand(CLI::App& app) {
                    "a ${} in the file\n",
                    name, value, opt->scene, name, name);
     if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
-    BuiltScene built =
-        buildScene(description, opt->model.empty() ? std::nullopt : std::optional(opt->model));
+    BuiltScene built = buildScene(
+        description, opt->model.empty() ? std::nullopt : std::optional(opt->model), memoryLimit);
     RenderOptions options = built.options;
     if (sppGiven) options.samplesPerPixel = opt->spp;
     if (opt->seed) options.seed = *opt->seed;

@@ -115,6 +115,11 @@ class ProgressBar {
 
 }  // namespace
 
+uint64_t renderImageBytes(int width, int height) {
+  constexpr uint64_t kPerPixel = sizeof(Color) + 3 * sizeof(float) + 3 + 8;
+  return uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0)) * kPerPixel;
+}
+
 double RenderStats::meanSamplesPerPixel() const {
   return finishedPixels == 0 ? 0.0 : double(samples) / double(finishedPixels);
 }

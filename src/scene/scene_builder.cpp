@@ -14,6 +14,7 @@
 #include "quadtri/render/integrator/direct_integrator.h"
 #include "quadtri/render/integrator/normals_integrator.h"
 #include "quadtri/render/integrator/path_integrator.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri {
 namespace {
@@ -115,7 +116,9 @@ TriangleMesh cubeMesh() {
 }  // namespace
 
 BuiltScene buildScene(const SceneDescription& description,
-                      const std::optional<std::string>& modelOverride) {
+                      const std::optional<std::string>& modelOverride, uint64_t maxMemoryBytes) {
+  MemoryBudget budget;
+  budget.maxBytes = maxMemoryBytes;
   BuiltScene built;
   built.scene = std::make_unique<RenderScene>();
   RenderScene& scene = *built.scene;
@@ -129,7 +132,11 @@ BuiltScene buildScene(const SceneDescription& description,
   camera.farClip = sensor.farClip;
   camera.width = sensor.film.width;
   camera.height = sensor.film.height;
-  at(sensor.location, toString(sensor), [&] { scene.setCamera(PerspectiveCamera(camera)); });
+  at(sensor.location, toString(sensor), [&] {
+    chargeMemory(budget, renderImageBytes(camera.width, camera.height), "the film",
+                 fmt::format("a {}x{} image", camera.width, camera.height));
+    scene.setCamera(PerspectiveCamera(camera));
+  });
   built.options.samplesPerPixel = sensor.sampler.sampleCount;
   built.options.seed = uint64_t(uint32_t(sensor.sampler.seed));
   built.options.filter.kind = sensor.film.filter.type == FilterDesc::Type::Box
@@ -163,8 +170,12 @@ BuiltScene buildScene(const SceneDescription& description,
         return;
       }
       const bool isFile = s.type == ShapeDesc::Type::Obj || s.type == ShapeDesc::Type::Ply;
+      const std::string model = !isFile ? "flat" : modelOverride ? *modelOverride : s.model;
+      const Tessellation tessellation =
+          s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
+      budget.bytesPerTriangle = modelBytesPerTriangle(model, tessellation, ModelUse::Render);
       TriangleMesh mesh =
-          isFile ? loadMesh(s.filename)
+          isFile ? loadMesh(s.filename, NormalSource::File, &budget)
                  : (s.type == ShapeDesc::Type::Rectangle ? rectangleMesh() : cubeMesh());
       if (s.faceNormals) {
         mesh.normals.clear();
@@ -172,9 +183,6 @@ BuiltScene buildScene(const SceneDescription& description,
       }
       if (isFile) built.inputTriangles += mesh.triangleCount();
       transformMesh(mesh, s.toWorld, s.flipNormals);
-      const std::string model = !isFile ? "flat" : modelOverride ? *modelOverride : s.model;
-      const Tessellation tessellation =
-          s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
       std::shared_ptr<const SurfaceModel> converted =
           makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
       scene.addModel(std::move(converted), tessellation, bsdf, s.areaRadiance, name);

@@ -100,6 +100,13 @@ TEST(Renderer, CancelLeavesPixelsBlackAndCountsThem) {
   for (const Color& c : r.image.pixels) EXPECT_TRUE(isBlack(c));
 }
 
+TEST(Renderer, ImageBytesCountTheFilmAndItsOutputCopies) {
+  // 24-byte double pixels, 12-byte float and 3-byte sRGB copies, 8 bytes of bookkeeping.
+  EXPECT_EQ(renderImageBytes(32, 32), 32u * 32u * 47u);
+  EXPECT_EQ(renderImageBytes(32768, 32768), uint64_t(32768) * 32768 * 47);
+  EXPECT_EQ(renderImageBytes(-1, 5), 0u);
+}
+
 TEST(Renderer, RejectsBadOptions) {
   RenderScene scene;
   furnaceScene(scene, 4, 4);

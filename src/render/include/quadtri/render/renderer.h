@@ -38,6 +38,10 @@ struct RenderResult {
   RenderStats stats;
 };
 
+/// Bytes of rendering and writing a width × height image: the film's double-precision pixels,
+/// the float and 8-bit copies that writeImage encodes, and the per-pixel bookkeeping.
+uint64_t renderImageBytes(int width, int height);
+
 /// Renders scene.camera()'s image. Each pixel has its own PCG32 stream, seeded from
 /// (seed, pixel index), and its film positions come from the reconstruction filter, so the
 /// image is the same for any thread count and tile order. A sample whose radiance is NaN or
