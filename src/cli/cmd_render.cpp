@@ -1,13 +1,13 @@
 // `quadtri render SCENE.xml -o out.exr [-o out.png]`: renders a Mitsuba-style scene.
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 
 #include "commands.h"
+#include "quadtri/io/stop_signals.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
 #include "quadtri/scene/scene_builder.h"
@@ -17,12 +17,19 @@
 namespace quadtri::cli {
 namespace {
 
-// Set by SIGINT: the renderer stops starting pixels and the image so far is written.
-std::atomic<bool> interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
-
-extern "C" void onInterrupt(int) {
-  interrupted.store(true);
+// What the pixels got, for the message of a stopped render: "1200 of 4800 pixels got 16
+// samples each, the other 3600 got none (black)".
+std::string samplesPerPixelReport(const RenderStats& s, size_t pixels) {
+  if (s.finishedPixels == 0)
+    return fmt::format("none of the {} pixels got a sample (all black)", pixels);
+  const std::string got =
+      s.minPixelSamples == s.maxPixelSamples
+          ? fmt::format("{} samples each", s.minPixelSamples)
+          : fmt::format("{} to {} samples ({:.1f} on average)", s.minPixelSamples,
+                        s.maxPixelSamples, s.meanSamplesPerPixel());
+  if (s.finishedPixels == pixels) return fmt::format("every pixel got {}", got);
+  return fmt::format("{} of {} pixels got {}, the other {} got none (black)", s.finishedPixels,
+                     pixels, got, pixels - s.finishedPixels);
 }
 
 }  // namespace
@@ -70,6 +77,10 @@ Action addRenderCommand(CLI::App& app) {
       fail("--time {}: expected a positive number of seconds", opt->timeLimit);
     const uint64_t memoryLimit = maxMemory();
 
+    // From here SIGINT, SIGTERM and SIGHUP stop the render and the pixels so far are written;
+    // a second one ends the process at once, leaving no temporary file.
+    const StopSignals signals;
+
     SceneDescription description = loadSceneDescription(opt->scene, defines);
     for (const auto& [name, value] : defines)
       if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
@@ -86,12 +97,21 @@ Action addRenderCommand(CLI::App& app) {
     if (opt->seed) options.seed = *opt->seed;
     options.threads = opt->threads;
     options.timeLimitSeconds = opt->timeLimit;
-    options.cancel = &interrupted;
+    options.cancel = &StopSignals::stopRequested();
     options.progress = isatty(STDERR_FILENO) != 0;
 
-    const auto previous = std::signal(SIGINT, onInterrupt);
+    if (const int sig = StopSignals::signalNumber()) {
+      fmt::print(stderr, "quadtri: stopped by {} before rendering; nothing written\n",
+                 StopSignals::signalName(sig));
+      return 128 + sig;
+    }
+    const PerspectiveCamera& camera = built.scene->camera();
+    fmt::print(stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
+               built.integrator->adaptive()
+                   ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
+                   : std::to_string(options.samplesPerPixel),
+               opt->threads > 0 ? fmt::format(", {} threads", opt->threads) : std::string());
     const RenderResult result = render(*built.scene, *built.integrator, options);
-    std::signal(SIGINT, previous);
 
     for (const std::string& out : opt->outputs) {
       const size_t replaced = writeImage(result.image, out);
@@ -116,11 +136,17 @@ Action addRenderCommand(CLI::App& app) {
                double(built.scene->geometryBytes()) / (1024.0 * 1024.0));
     if (s.nonFiniteSamples)
       fmt::print(stderr, "warning: {} NaN/Inf samples dropped\n", s.nonFiniteSamples);
+    if (const int sig = StopSignals::signalNumber()) {
+      fmt::print(stderr, "quadtri: stopped by {}{}: {}; wrote {}\n", StopSignals::signalName(sig),
+                 s.stopped ? "" : " after the render",
+                 samplesPerPixelReport(s, result.image.pixels.size()),
+                 fmt::join(opt->outputs, ", "));
+      return 128 + sig;
+    }
     if (s.unfinishedPixels)
-      fmt::print(stderr, "warning: {} of {} pixels not rendered ({}), left black\n",
-                 s.unfinishedPixels, result.image.pixels.size(),
-                 interrupted.load() ? "interrupted" : "time limit");
-    return interrupted.load() ? 130 : 0;
+      fmt::print(stderr, "warning: {} of {} pixels not rendered (time limit), left black\n",
+                 s.unfinishedPixels, result.image.pixels.size());
+    return 0;
   };
 }
 

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <string>
 
@@ -141,6 +142,7 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
   std::atomic<uint64_t> samples{0}, rays{0};
   std::atomic<size_t> nonFinite{0}, finishedPixels{0}, unfinished{0};
   std::atomic<bool> stopped{false};
+  std::atomic<uint64_t> minSamples{std::numeric_limits<uint64_t>::max()}, maxSamples{0};
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
                                     std::chrono::duration<double>(options.timeLimitSeconds));
@@ -163,7 +165,8 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
             const int x0 = int(tile % size_t(tilesX)) * kTileSize,
                       y0 = int(tile / size_t(tilesX)) * kTileSize;
             const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
-            uint64_t tileSamples = 0, tileRays = 0;
+            uint64_t tileSamples = 0, tileRays = 0, tileMin = std::numeric_limits<uint64_t>::max(),
+                     tileMax = 0;
             size_t tileNonFinite = 0, tileDone = 0, tileSkipped = 0;
             for (int y = y0; y < y1; ++y)
               for (int x = x0; x < x1; ++x) {
@@ -176,8 +179,14 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
                 tileSamples += p.samples;
                 tileRays += p.rays;
                 tileNonFinite += p.nonFinite;
+                tileMin = std::min(tileMin, p.samples);
+                tileMax = std::max(tileMax, p.samples);
                 ++tileDone;
               }
+            for (uint64_t seen = minSamples.load(); tileMin < seen;)
+              if (minSamples.compare_exchange_weak(seen, tileMin)) break;
+            for (uint64_t seen = maxSamples.load(); tileMax > seen;)
+              if (maxSamples.compare_exchange_weak(seen, tileMax)) break;
             samples += tileSamples;
             rays += tileRays;
             nonFinite += tileNonFinite;
@@ -195,6 +204,9 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
   result.stats.nonFiniteSamples = nonFinite.load();
   result.stats.unfinishedPixels = unfinished.load();
   result.stats.finishedPixels = finishedPixels.load();
+  result.stats.minPixelSamples = result.stats.finishedPixels ? minSamples.load() : 0;
+  result.stats.maxPixelSamples = maxSamples.load();
+  result.stats.stopped = stopped.load();
   return result;
 }
 

@@ -29,6 +29,8 @@ struct RenderStats {
   size_t finishedPixels = 0;
   size_t unfinishedPixels = 0;  ///< left black by the time limit or a cancel
   size_t nonFiniteSamples = 0;  ///< NaN/Inf estimates dropped (counted as zero radiance)
+  uint64_t minPixelSamples = 0, maxPixelSamples = 0;  ///< over the finished pixels (0 if none)
+  bool stopped = false;  ///< the cancel flag or the time limit stopped it before every pixel
   /// Mean samples per finished pixel (differs from the fixed count only when adaptive).
   double meanSamplesPerPixel() const;
 };
