@@ -10,6 +10,8 @@
 #include "quadtri/io/stop_signals.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
+#include "quadtri/render/render_state.h"
+#include "quadtri/scene/render_key.h"
 #include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
 #include "quadtri/surface/model.h"
@@ -39,8 +41,9 @@ Action addRenderCommand(CLI::App& app) {
     std::string scene, model;
     std::vector<std::string> outputs, defines;
     int spp = 0, threads = 0;
-    double timeLimit = 0.0;
+    double timeLimit = 0.0, checkpoint = 0.0;
     std::optional<uint64_t> seed;
+    std::string resume;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -59,8 +62,17 @@ Action addRenderCommand(CLI::App& app) {
                                             "Time budget in seconds; unfinished pixels stay black");
   sub->add_option("--seed", opt->seed, "Sampler seed (overrides the sampler)");
   const auto maxMemory = addMaxMemoryOption(*sub);
-  return [opt, sppOption, timeOption, maxMemory]() {
+  CLI::Option* checkpointOption = sub->add_option(
+      "--checkpoint", opt->checkpoint,
+      "Every SECONDS, save the finished pixels to FIRST_OUTPUT.state (and when stopped early), "
+      "for --resume; removed once the image is complete");
+  sub->add_option("--resume", opt->resume,
+                  "Resume the render saved in STATE (by --checkpoint): only the pixels it lacks "
+                  "are rendered; refused unless the scene, options, seed and version match")
+      ->check(CLI::ExistingFile);
+  return [opt, sppOption, timeOption, checkpointOption, maxMemory]() {
     const bool sppGiven = sppOption->count() > 0, timeGiven = timeOption->count() > 0;
+    const bool checkpointGiven = checkpointOption->count() > 0;
     SceneDefines defines;
     for (const std::string& d : opt->defines) {
       const size_t eq = d.find('=');
@@ -75,6 +87,8 @@ Action addRenderCommand(CLI::App& app) {
     if (opt->threads < 0) fail("--threads {}: expected 0 (all) or a positive count", opt->threads);
     if (timeGiven && !(opt->timeLimit > 0.0))
       fail("--time {}: expected a positive number of seconds", opt->timeLimit);
+    if (checkpointGiven && !(opt->checkpoint > 0.0))
+      fail("--checkpoint {}: expected a positive number of seconds", opt->checkpoint);
     const uint64_t memoryLimit = maxMemory();
 
     // From here SIGINT, SIGTERM and SIGHUP stop the render and the pixels so far are written;
@@ -99,25 +113,59 @@ Action addRenderCommand(CLI::App& app) {
     options.timeLimitSeconds = opt->timeLimit;
     options.cancel = &StopSignals::stopRequested();
     options.progress = isatty(STDERR_FILENO) != 0;
+    const PerspectiveCamera& camera = built.scene->camera();
+
+    // Checkpoints and resuming: a state is only resumed by the render that saved it.
+    const uint64_t key = renderKey(description, options,
+                                   opt->model.empty() ? std::nullopt : std::optional(opt->model));
+    std::optional<RenderState> resumed;
+    if (!opt->resume.empty()) {
+      resumed = loadRenderState(opt->resume);
+      checkResumable(*resumed, key, camera.width(), camera.height(), opt->resume);
+      options.resume = &*resumed;
+      fmt::print(stderr, "resuming {}: {} of {} pixels already rendered\n", opt->resume,
+                 resumed->finishedPixels(), resumed->samples.size());
+    }
+    const std::filesystem::path statePath = opt->outputs.front() + ".state";
+    if (checkpointGiven) {
+      options.checkpointSeconds = opt->checkpoint;
+      options.stateKey = key;
+      options.checkpoint = [statePath](const RenderState& state) {
+        saveRenderState(state, statePath);
+      };
+    }
 
     if (const int sig = StopSignals::signalNumber()) {
       fmt::print(stderr, "quadtri: stopped by {} before rendering; nothing written\n",
                  StopSignals::signalName(sig));
       return 128 + sig;
     }
-    const PerspectiveCamera& camera = built.scene->camera();
     fmt::print(stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
                built.integrator->adaptive()
                    ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
                    : std::to_string(options.samplesPerPixel),
                opt->threads > 0 ? fmt::format(", {} threads", opt->threads) : std::string());
     const RenderResult result = render(*built.scene, *built.integrator, options);
-
+    if (!result.checkpointError.empty())
+      fmt::print(stderr, "warning: checkpoints stopped: {}\n", result.checkpointError);
+    // An image that is not complete leaves its state behind to resume (saved before the
+    // images, so a second signal while they are written keeps it); a complete one removes the
+    // checkpoint once the images are written.
+    std::string saved;
+    if (checkpointGiven && result.stats.unfinishedPixels > 0) {
+      saveRenderState(result.state(key), statePath);
+      saved = fmt::format("; saved {}, resume with --resume {}", statePath.string(),
+                          statePath.string());
+    }
     for (const std::string& out : opt->outputs) {
       const size_t replaced = writeImage(result.image, out);
       if (replaced)
         fmt::print(stderr, "warning: {}: {} non-finite values written as 0\n", out, replaced);
       fmt::print("wrote {}\n", out);
+    }
+    if (checkpointGiven && result.stats.unfinishedPixels == 0) {
+      std::error_code ignored;
+      std::filesystem::remove(statePath, ignored);
     }
     const RenderStats& s = result.stats;
     fmt::print("integrator      {}\n", built.integrator->toString());
@@ -137,15 +185,15 @@ Action addRenderCommand(CLI::App& app) {
     if (s.nonFiniteSamples)
       fmt::print(stderr, "warning: {} NaN/Inf samples dropped\n", s.nonFiniteSamples);
     if (const int sig = StopSignals::signalNumber()) {
-      fmt::print(stderr, "quadtri: stopped by {}{}: {}; wrote {}\n", StopSignals::signalName(sig),
+      fmt::print(stderr, "quadtri: stopped by {}{}: {}; wrote {}{}\n", StopSignals::signalName(sig),
                  s.stopped ? "" : " after the render",
                  samplesPerPixelReport(s, result.image.pixels.size()),
-                 fmt::join(opt->outputs, ", "));
+                 fmt::join(opt->outputs, ", "), saved);
       return 128 + sig;
     }
     if (s.unfinishedPixels)
-      fmt::print(stderr, "warning: {} of {} pixels not rendered (time limit), left black\n",
-                 s.unfinishedPixels, result.image.pixels.size());
+      fmt::print(stderr, "warning: {} of {} pixels not rendered (time limit), left black{}\n",
+                 s.unfinishedPixels, result.image.pixels.size(), saved);
     return 0;
   };
 }
