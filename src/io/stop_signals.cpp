@@ -39,17 +39,41 @@ extern "C" void onStopSignal(int number) {
   ::_exit(128 + number);
 }
 
+extern "C" void onExitSignal(int number) {
+  removeTemporaryFilesNow();
+  writeStderr("\nquadtri: stopped by ");
+  writeStderr(StopSignals::signalName(number));
+  writeStderr(", the outputs not yet written are not written\n");
+  ::_exit(128 + number);
+}
+
+// Installs `handler` for `number` unless the signal is ignored (nohup ignores SIGHUP, a
+// non-interactive shell's `cmd &` ignores SIGINT): what the caller chose to ignore stays so.
+// `before` receives the disposition it had.
+void installUnlessIgnored(int number, void (*handler)(int), struct sigaction* before) {
+  struct sigaction current {};
+  sigaction(number, nullptr, &current);
+  if (before) *before = current;
+  if (current.sa_handler == SIG_IGN) return;
+  struct sigaction action {};
+  action.sa_handler = handler;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  sigaction(number, &action, nullptr);
+}
+
 }  // namespace
+
+void exitCleanlyOnStopSignals() {
+  for (const int number : kSignals) installUnlessIgnored(number, onExitSignal, nullptr);
+}
 
 StopSignals::StopSignals() {
   if (installed.exchange(true)) fail("StopSignals: only one instance at a time");
   stopFlag.store(false);
   firstSignal.store(0);
-  struct sigaction action {};
-  action.sa_handler = onStopSignal;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;
-  for (size_t i = 0; i < std::size(kSignals); ++i) sigaction(kSignals[i], &action, &previous[i]);
+  for (size_t i = 0; i < std::size(kSignals); ++i)
+    installUnlessIgnored(kSignals[i], onStopSignal, &previous[i]);
 }
 
 StopSignals::~StopSignals() {

@@ -39,9 +39,18 @@ class CliProcess {
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_.c_str(),
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    // The stop signals start at their default even when this process ignores one (nohup).
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    for (const int number : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&defaults, number);
+    posix_spawnattr_setsigdefault(&attributes, &defaults);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
     start_ = std::chrono::steady_clock::now();
-    const int rc = posix_spawn(&pid_, QUADTRI_CLI, &actions, nullptr, cargv.data(), environ);
+    const int rc = posix_spawn(&pid_, QUADTRI_CLI, &actions, &attributes, cargv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
     if (rc != 0) throw std::runtime_error("cannot start " + std::string(QUADTRI_CLI));
   }
   ~CliProcess() {

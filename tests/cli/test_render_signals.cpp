@@ -155,5 +155,34 @@ TEST(RenderSignals, SecondSignalWhileWritingRemovesTheTemporaryFile) {
   fs::remove_all(dir);
 }
 
+TEST(RenderSignals, ConvertStoppedWhileWritingLeavesNoTemporaryFile) {
+  // Commands other than render have nothing to finish: a signal ends them at once, after
+  // removing the temporary file of the output being written.
+  const fs::path dir = freshDir("signal-convert");
+  bool caught = false;
+  for (int attempt = 0; attempt < 5 && !caught; ++attempt) {
+    CliProcess p(
+        {"convert", "icosphere:5", "--model", "quadric-param", "-o", (dir / "out.obj").string()},
+        dir);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (temporaryFiles(dir).empty() && !fs::exists(dir / "out.obj") &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    caught = !temporaryFiles(dir).empty();
+    if (caught) p.signal(SIGTERM);
+    const int status = p.wait();
+    EXPECT_TRUE(temporaryFiles(dir).empty());
+    if (caught && status == 128 + SIGTERM) {
+      EXPECT_NE(p.stderrText().find("quadtri: stopped by SIGTERM"), std::string::npos)
+          << p.stderrText();
+    } else {
+      EXPECT_EQ(status, 0) << p.stderrText();  // renamed into place before the signal
+    }
+    fs::remove(dir / "out.obj");
+  }
+  EXPECT_TRUE(caught) << "the temporary file was never seen in 5 attempts";
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace quadtri::test

@@ -42,7 +42,13 @@ TEST(AtomicFile, RemoveTemporaryFilesNowRemovesTheFileBeingWritten) {
   fs::remove_all(dir);
 }
 
+// Starts each test from the default dispositions, whatever this process inherited.
+void defaultStopSignals() {
+  for (const int number : {SIGINT, SIGTERM, SIGHUP}) std::signal(number, SIG_DFL);
+}
+
 TEST(StopSignals, FirstSignalSetsTheFlagAndIsRemembered) {
+  defaultStopSignals();
   for (const int number : {SIGTERM, SIGHUP, SIGINT}) {
     const StopSignals signals;
     EXPECT_FALSE(StopSignals::stopRequested().load());
@@ -57,7 +63,25 @@ TEST(StopSignals, FirstSignalSetsTheFlagAndIsRemembered) {
   EXPECT_STREQ(StopSignals::signalName(SIGINT), "SIGINT");
 }
 
+TEST(StopSignals, AnIgnoredSignalStaysIgnored) {
+  defaultStopSignals();
+  std::signal(SIGHUP, SIG_IGN);  // as under nohup
+  {
+    const StopSignals signals;
+    std::raise(SIGHUP);
+    EXPECT_FALSE(StopSignals::stopRequested().load());
+    std::raise(SIGTERM);
+    EXPECT_EQ(StopSignals::signalNumber(), SIGTERM);
+  }
+  struct sigaction now {};
+  sigaction(SIGHUP, nullptr, &now);
+  EXPECT_EQ(now.sa_handler, SIG_IGN);
+  defaultStopSignals();
+}
+
 TEST(StopSignalsDeathTest, SecondSignalExitsAtOnceWith128PlusItsNumber) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // TBB's threads may be running
+  defaultStopSignals();
   EXPECT_EXIT(
       {
         const StopSignals signals;
@@ -66,6 +90,26 @@ TEST(StopSignalsDeathTest, SecondSignalExitsAtOnceWith128PlusItsNumber) {
         std::abort();  // not reached
       },
       ::testing::ExitedWithCode(128 + SIGHUP), "SIGHUP again: stopped at once");
+}
+
+TEST(StopSignalsDeathTest, OtherCommandsExitAtOnceRemovingTheirTemporaryFile) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  defaultStopSignals();
+  const fs::path dir = fs::temp_directory_path() / "quadtri_test_exit_signal";
+  fs::create_directories(dir);
+  EXPECT_EXIT(
+      {
+        exitCleanlyOnStopSignals();
+        writeAtomically(dir / "out.txt", [](const fs::path& tmp) {
+          std::ofstream(tmp) << "half";
+          std::raise(SIGTERM);
+        });
+        std::abort();  // not reached
+      },
+      ::testing::ExitedWithCode(128 + SIGTERM), "stopped by SIGTERM");
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+  defaultStopSignals();
 }
 
 }  // namespace

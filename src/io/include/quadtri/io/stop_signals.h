@@ -6,6 +6,13 @@
 
 namespace quadtri {
 
+/// Makes SIGINT, SIGTERM and SIGHUP end the process at once, as they do by default, but after
+/// removing every temporary file of writeAtomically and writing one line naming the signal to
+/// stderr; the status is 128 + its number. For commands that have nothing to finish: while a
+/// StopSignals lives, its handlers take over, and its destructor brings these back. A signal
+/// the process was started ignoring (nohup's SIGHUP) stays ignored, here and in StopSignals.
+void exitCleanlyOnStopSignals();
+
 /// While an instance lives, the first SIGINT, SIGTERM or SIGHUP sets stopRequested() and is
 /// remembered; the process keeps running, so the caller can finish what is in flight and write
 /// what it has. A second one of any of them removes every temporary file of writeAtomically
