@@ -11,6 +11,7 @@
 #include "quadtri/analysis/tessellation_view.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri::cli {
 
@@ -48,15 +49,29 @@ Action addAnalyzeCommand(CLI::App& app) {
   sub->add_option("--heatmap-width", opt->heatmapWidth,
                   "About how many pixels wide the per-patch heatmaps are")
       ->capture_default_str();
-  return [opt]() {
+  const auto maxMemory = addMaxMemoryOption(*sub);
+  return [opt, maxMemory]() {
     if (opt->heatmapWidth < 100 || opt->heatmapWidth > 10000)
       fail("--heatmap-width {}: expected 100 to 10000 pixels", opt->heatmapWidth);
     opt->analysis.tessellation = Tessellation::parse(opt->tessellation);
     if (opt->analysis.crack.lines == 0) fail("--lines: expected a positive number of lines");
-    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options());
-    const auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const std::vector<std::string> names =
         opt->model == "all" ? modelNames() : std::vector<std::string>{opt->model};
+    // The mesh and the dearest of its models (built one at a time, traced for the crack rate;
+    // the heatmaps' views tessellate the thesis' grid) must fit in --max-memory.
+    MemoryBudget budget;
+    budget.maxBytes = maxMemory();
+    for (const std::string& name : names) {
+      budget.bytesPerTriangle =
+          std::max(budget.bytesPerTriangle,
+                   modelBytesPerTriangle(name, opt->analysis.tessellation, ModelUse::Render));
+      if (!opt->heatmaps.empty())
+        budget.bytesPerTriangle =
+            std::max(budget.bytesPerTriangle,
+                     modelBytesPerTriangle(name, Tessellation::thesis(), ModelUse::ConvertMesh));
+    }
+    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
+    const auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     std::vector<ModelMetrics> rows;
     for (const std::string& name : names) {
       const auto start = std::chrono::steady_clock::now();

@@ -8,6 +8,7 @@
 #include "normal_flags.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/surface/convert_output.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri::cli {
 
@@ -37,9 +38,17 @@ Action addConvertCommand(CLI::App& app) {
                  "Shading normals: file (as given; angle-weighted and split at --crease-angle "
                  "when missing), average (thesis eq. 2.8) or angle (angle-weighted, split at "
                  "--crease-angle)");
-  return [opt]() {
+  const auto maxMemory = addMaxMemoryOption(*sub);
+  return [opt, maxMemory]() {
     const Tessellation tessellation = Tessellation::parse(opt->tessellation);
-    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options());
+    // The mesh and its model must fit in --max-memory, checked before either is built.
+    MemoryBudget budget;
+    budget.maxBytes = maxMemory();
+    budget.bytesPerTriangle = modelBytesPerTriangle(
+        opt->model, tessellation,
+        std::filesystem::path(opt->output).extension() == ".json" ? ModelUse::ConvertJson
+                                                                  : ModelUse::ConvertMesh);
+    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<SurfaceModel> model = makeModel(opt->model, mesh);

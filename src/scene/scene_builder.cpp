@@ -14,6 +14,7 @@
 #include "quadtri/render/integrator/direct_integrator.h"
 #include "quadtri/render/integrator/normals_integrator.h"
 #include "quadtri/render/integrator/path_integrator.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri {
 namespace {
@@ -115,7 +116,9 @@ TriangleMesh cubeMesh() {
 }  // namespace
 
 BuiltScene buildScene(const SceneDescription& description,
-                      const std::optional<std::string>& modelOverride) {
+                      const std::optional<std::string>& modelOverride, uint64_t maxMemoryBytes) {
+  MemoryBudget budget;
+  budget.maxBytes = maxMemoryBytes;
   BuiltScene built;
   built.scene = std::make_unique<RenderScene>();
   RenderScene& scene = *built.scene;
@@ -134,7 +137,13 @@ BuiltScene buildScene(const SceneDescription& description,
   camera.cropWidth = sensor.film.cropWidth;
   camera.cropHeight = sensor.film.cropHeight;
   camera.principalPointOffset = sensor.principalPointOffset;
-  at(sensor.location, toString(sensor), [&] { scene.setCamera(PerspectiveCamera(camera)); });
+  at(sensor.location, toString(sensor), [&] {
+    const int imageWidth = camera.cropWidth > 0 ? camera.cropWidth : camera.width;
+    const int imageHeight = camera.cropHeight > 0 ? camera.cropHeight : camera.height;
+    chargeMemory(budget, renderImageBytes(imageWidth, imageHeight), "the film",
+                 fmt::format("a {}x{} image", imageWidth, imageHeight));
+    scene.setCamera(PerspectiveCamera(camera));
+  });
   built.options.samplesPerPixel = sensor.sampler.sampleCount;
   built.options.seed = uint64_t(uint32_t(sensor.sampler.seed));
   built.options.filter.kind =
@@ -170,8 +179,12 @@ BuiltScene buildScene(const SceneDescription& description,
         return;
       }
       const bool isFile = s.type == ShapeDesc::Type::Obj || s.type == ShapeDesc::Type::Ply;
+      const std::string model = !isFile ? "flat" : modelOverride ? *modelOverride : s.model;
+      const Tessellation tessellation =
+          s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
+      budget.bytesPerTriangle = modelBytesPerTriangle(model, tessellation, ModelUse::Render);
       TriangleMesh mesh =
-          isFile ? loadMesh(s.filename, s.normals)
+          isFile ? loadMesh(s.filename, s.normals, &budget)
                  : (s.type == ShapeDesc::Type::Rectangle ? rectangleMesh() : cubeMesh());
       if (s.faceNormals) {
         mesh.normals.clear();
@@ -179,9 +192,6 @@ BuiltScene buildScene(const SceneDescription& description,
       }
       if (isFile) built.inputTriangles += mesh.triangleCount();
       transformMesh(mesh, s.toWorld, s.flipNormals);
-      const std::string model = !isFile ? "flat" : modelOverride ? *modelOverride : s.model;
-      const Tessellation tessellation =
-          s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
       std::shared_ptr<const SurfaceModel> converted =
           makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
       scene.addModel(std::move(converted), tessellation, bsdf, s.areaRadiance, name);

@@ -26,8 +26,12 @@ struct BuiltScene {
 /// (positions by the matrix, normals by its inverse transpose; a mirroring matrix reverses the
 /// winding so the face normals keep agreeing with the shading normals) and converted by their
 /// model, or by `modelOverride` when given; rectangles and cubes are `flat` triangle meshes;
-/// spheres are analytic quadrics. Errors name the XML element's FILE:LINE.
+/// spheres are analytic quadrics. Errors name the XML element's FILE:LINE. With maxMemoryBytes
+/// (0: no limit), the image (renderImageBytes) and every mesh file with its model
+/// (loadMesh's MemoryBudget, modelBytesPerTriangle for rendering) are charged against it before
+/// they are built, and the first that would exceed it is refused with the estimate.
 BuiltScene buildScene(const SceneDescription& description,
-                      const std::optional<std::string>& modelOverride = std::nullopt);
+                      const std::optional<std::string>& modelOverride = std::nullopt,
+                      uint64_t maxMemoryBytes = 0);
 
 }  // namespace quadtri
