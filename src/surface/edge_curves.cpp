@@ -15,9 +15,12 @@ namespace {
 constexpr double kDamping = 1e-7;
 // The control point may sit at most this many edge lengths from the chord midpoint.
 constexpr double kMaxOffset = 1.0;
+// Distance from a tangent plane, relative to the edge length, beyond which the control point
+// counts as having given up that plane (far above the damping's bias on real data, ~1e-14/σ).
+constexpr double kTangentTolerance = 1e-6;
 
 // The control point of one mesh edge, from the normals its triangles share (see the header).
-Vec3 sharedEdgeControlPoint(const TriangleMesh& mesh, const Edge& edge) {
+Vec3 sharedEdgeControlPoint(const TriangleMesh& mesh, const Edge& edge, bool& gaveUp) {
   Vec3 na = Vec3::Zero(), nb = Vec3::Zero();
   for (auto [t, k] : edge.sides) {
     const bool forward = mesh.triangles[t][k] == edge.a;
@@ -37,8 +40,8 @@ Vec3 sharedEdgeControlPoint(const TriangleMesh& mesh, const Edge& edge) {
     split |= mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na0;
     split |= mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb0;
   }
-  return split ? edgeControlPoint(va, safeNormalized(na, na0), vb, safeNormalized(nb, nb0))
-               : edgeControlPoint(va, na0, vb, nb0);
+  return split ? edgeControlPoint(va, safeNormalized(na, na0), vb, safeNormalized(nb, nb0), &gaveUp)
+               : edgeControlPoint(va, na0, vb, nb0, &gaveUp);
 }
 
 }  // namespace
@@ -50,7 +53,9 @@ bool edgeEndsSwapped(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3&
   return less(vj, vi) || (vj == vi && less(nj, ni));
 }
 
-Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, const Vec3& njIn) {
+Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, const Vec3& njIn,
+                      bool* gaveUp) {
+  if (gaveUp) *gaveUp = false;
   // Canonical order makes the result independent of which side asks.
   const bool swap = edgeEndsSwapped(viIn, niIn, vjIn, njIn);
   const Vec3& vi = swap ? vjIn : viIn;
@@ -83,23 +88,42 @@ Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, cons
   rhs << r, 0.0, 0.0, 0.0;
   Vec3 delta = A.householderQr().solve(rhs);
   const double dl = delta.norm();
-  if (!std::isfinite(dl)) return mid;
-  if (dl > kMaxOffset * len) delta *= kMaxOffset * len / dl;
+  if (!std::isfinite(dl)) {
+    if (gaveUp) *gaveUp = true;
+    return mid;
+  }
+  if (dl > kMaxOffset * len) {
+    delta *= kMaxOffset * len / dl;
+    if (gaveUp) *gaveUp = true;
+  }
+  // Residuals of the two tangent planes: ni·δ = r0 and nj·δ = r1.
+  if (gaveUp && std::max(std::abs(ni.dot(delta) - r[0]), std::abs(nj.dot(delta) - r[1])) >
+                    kTangentTolerance * len)
+    *gaveUp = true;
   return mid + delta;
 }
 
-std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh) {
+std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
+                                                   std::vector<uint8_t>* gaveUpPatches) {
   const MeshTopology topo(mesh);
   std::vector<std::array<Vec3, 3>> out(mesh.triangleCount());
+  std::vector<uint8_t> gaveUpEdges(gaveUpPatches ? topo.edges.size() : 0, 0);
   // Each edge writes only its own sides' slots, so edges are independent and the result does
   // not depend on the thread count.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
                     [&](const tbb::blocked_range<size_t>& range) {
                       for (size_t e = range.begin(); e != range.end(); ++e) {
-                        const Vec3 b = sharedEdgeControlPoint(mesh, topo.edges[e]);
+                        bool gaveUp = false;
+                        const Vec3 b = sharedEdgeControlPoint(mesh, topo.edges[e], gaveUp);
                         for (auto [t, k] : topo.edges[e].sides) out[t][k] = b;
+                        if (gaveUpPatches) gaveUpEdges[e] = gaveUp;
                       }
                     });
+  if (gaveUpPatches) {
+    gaveUpPatches->assign(mesh.triangleCount(), 0);
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) (*gaveUpPatches)[t] |= gaveUpEdges[topo.edgeOf[t][k]];
+  }
   return out;
 }
 
