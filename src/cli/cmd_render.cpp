@@ -79,6 +79,7 @@ Action addRenderCommand(CLI::App& app) {
     if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
     BuiltScene built =
         buildScene(description, opt->model.empty() ? std::nullopt : std::optional(opt->model));
+    for (const std::string& warning : built.warnings) fmt::print(stderr, "warning: {}\n", warning);
     RenderOptions options = built.options;
     if (sppGiven) options.samplesPerPixel = opt->spp;
     if (opt->seed) options.seed = *opt->seed;

@@ -1,7 +1,10 @@
-// Which patches give up a constraint (SurfaceModel::fellBack).
+// Which patches give up a constraint (SurfaceModel::fellBack), the corner counts of
+// corner_stats.h and the conversion warning built on both.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/corner_stats.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/nagata_model.h"
@@ -82,6 +85,7 @@ TEST(Fallbacks, ExactCountOnAStepBetweenEqualNormals) {
        {"quadric-edges", "quadric-param", "quadric-implicit", "quadric-edges-eq42", "nagata"}) {
     const std::unique_ptr<SurfaceModel> model = makeModel(name, mesh);
     EXPECT_EQ(model->fallbackCount(), k) << name;
+    EXPECT_EQ(fallbackRate(*model), 6.0 / 32.0) << name;
     for (size_t t = 0; t < T; ++t) {
       const Tri& tri = mesh->triangles[t];
       EXPECT_EQ(model->fellBack(t), tri[0] == 12 || tri[1] == 12 || tri[2] == 12) << name << t;
@@ -123,6 +127,71 @@ TEST(Fallbacks, RobustPointFallbackForATriangleWithoutExtent) {
   EXPECT_FALSE(model.fellBack(0));
   EXPECT_TRUE(model.fellBack(1));
   EXPECT_EQ(model.fallbackCount(), 1u);
+}
+
+TEST(CornerStats, OneFlippedNormalMakesItsCornersInconsistent) {
+  // icosphere:1 with analytic normals, one vertex normal turned inside out: exactly the corners
+  // that use it face away from their normal.
+  TriangleMesh mesh = makeBuiltin("icosphere", ShapeParams{1}).mesh;
+  const uint32_t flipped = mesh.normalIndices[0][0];
+  mesh.normals[flipped] = -mesh.normals[flipped];
+  size_t k = 0;
+  for (const Tri& tri : mesh.normalIndices)
+    for (uint32_t i : tri) k += i == flipped;
+  ASSERT_GE(k, 5u);
+  const auto shared = std::make_shared<const TriangleMesh>(std::move(mesh));
+  const size_t corners = 3 * shared->triangleCount();
+  const std::unique_ptr<SurfaceModel> flat = makeModel("flat", shared);
+  const double unflippedErrorDeg =
+      cornerStats(*makeModel("flat", std::make_shared<const TriangleMesh>(
+                                         makeBuiltin("icosphere", ShapeParams{1}).mesh)))
+          .maxNormalErrorDeg;
+  const CornerStats s = cornerStats(*flat);
+  EXPECT_EQ(s.corners, corners);
+  EXPECT_EQ(s.inconsistent, k);
+  EXPECT_EQ(s.inconsistentRate(), double(k) / double(corners));
+  // The facet (oriented by its corners' normals, two of three outward) faces away from the
+  // flipped normal only: every fold is at an inconsistent corner.
+  EXPECT_EQ(s.flips, k);
+  EXPECT_EQ(s.consistentFlips, 0u);
+  EXPECT_EQ(s.consistentFlipRate(), 0.0);
+  EXPECT_GT(s.maxNormalErrorDeg, 90.0);
+  ASSERT_TRUE(s.maxConsistentNormalErrorDeg);
+  // The consistent corners are corners of the unflipped mesh, with the same facets.
+  EXPECT_GT(*s.maxConsistentNormalErrorDeg, 10.0);
+  EXPECT_LE(*s.maxConsistentNormalErrorDeg, unflippedErrorDeg);
+  EXPECT_EQ(s.nonFinite, 0u);
+}
+
+TEST(CornerStats, NoConsistentCornerOnADegenerateTriangle) {
+  TriangleMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+  mesh.triangles = {{0, 1, 2}};
+  mesh.normals = {Vec3::UnitZ()};
+  mesh.normalIndices = {{0, 0, 0}};
+  const CornerStats s =
+      cornerStats(*makeModel("shading", std::make_shared<const TriangleMesh>(std::move(mesh))));
+  EXPECT_EQ(s.inconsistent, 3u);
+  EXPECT_EQ(s.consistent(), 0u);
+  EXPECT_FALSE(s.consistentFlipRate());
+  EXPECT_FALSE(s.maxConsistentNormalErrorDeg);
+}
+
+TEST(ConversionWarning, NamesTheMeshModelAndBothFigures) {
+  const auto mesh = liftedGrid();
+  const std::unique_ptr<SurfaceModel> param = makeModel("quadric-param", mesh);
+  const CornerStats s = cornerStats(*param);
+  const std::optional<std::string> warning = conversionWarning(*param, "grid.obj");
+  ASSERT_TRUE(warning);
+  EXPECT_EQ(*warning, fmt::format("grid.obj: quadric-param folds at {:.3g}% of consistent corners "
+                                  "({} of {}) and falls back on 18.8% of patches (6 of 32)",
+                                  100.0 * double(s.consistentFlips) / double(s.consistent()),
+                                  s.consistentFlips, s.consistent()));
+  // Nothing to say about a smooth mesh, nor about the models that keep their triangles.
+  const auto sphere = std::make_shared<const TriangleMesh>(makeBuiltin("icosahedron").mesh);
+  for (const std::string& name : modelNames())
+    EXPECT_FALSE(conversionWarning(*makeModel(name, sphere), "ico")) << name;
+  EXPECT_FALSE(conversionWarning(*makeModel("shading", mesh), "grid.obj"));
 }
 
 }  // namespace
