@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add(&quadtri::cli::addFigureCommand);
   add(&quadtri::cli::addMeshCommand);
   add(&quadtri::cli::addRenderCommand);
+  add(&quadtri::cli::addStudyCommand);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
