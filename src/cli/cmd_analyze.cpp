@@ -1,4 +1,4 @@
-// `quadtri analyze MESH --model NAME|all [--json]`: the DESIGN.md §4 metrics of each model.
+// `quadtri analyze MESH --model NAME|all [--json]`: the docs/DESIGN.md §4 metrics of each model.
 #include <fmt/core.h>
 
 #include <nlohmann/json.hpp>

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cstring>
 
-#include "quadtri/analysis/convergence.h"
 #include "commands.h"
+#include "quadtri/analysis/convergence.h"
 #include "quadtri/io/atomic_file.h"
 #include "quadtri/math/error.h"
 #include "quadtri/surface/model.h"

@@ -8,8 +8,8 @@
 #include <variant>
 #include <vector>
 
-#include "quadtri/math/vec.h"
 #include "quadtri/math/color.h"
+#include "quadtri/math/vec.h"
 #include "xml_file.h"
 
 namespace quadtri {

@@ -16,8 +16,8 @@
 #include <algorithm>
 
 #include "properties.h"
-#include "scene_parser.h"
 #include "quadtri/surface/model.h"
+#include "scene_parser.h"
 
 namespace quadtri {
 

@@ -6,9 +6,9 @@
 
 #include "quadtri/math/error.h"
 #include "quadtri/render/camera.h"
-#include "render/chi2.h"
 #include "quadtri/render/filter.h"
 #include "quadtri/render/image_io.h"
+#include "render/chi2.h"
 #include "render_fixtures.h"
 
 namespace quadtri::testing {

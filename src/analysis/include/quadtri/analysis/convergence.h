@@ -1,4 +1,4 @@
-// Convergence to the true surface under refinement: truth_distance (DESIGN.md §4) of every
+// Convergence to the true surface under refinement: truth_distance (docs/DESIGN.md §4) of every
 // model on a sequence of ever finer meshes of one built-in shape, and the observed order.
 #pragma once
 

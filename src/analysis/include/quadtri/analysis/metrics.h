@@ -1,4 +1,4 @@
-// How well a model meets the four constraints and what it costs (DESIGN.md §4): free functions
+// How well a model meets the four constraints and what it costs (docs/DESIGN.md §4): free functions
 // over a SurfaceModel, and the per-model record that `quadtri analyze` prints.
 #pragma once
 
@@ -97,7 +97,7 @@ ModelMetrics analyzeNamedModel(const std::string& name,
                                const AnalysisOptions& options = {},
                                const std::function<void(const SurfaceModel&)>& inspect = {});
 
-/// Every key of toJson, in order: "model", "mesh", then the DESIGN.md §4 keys and the corner
+/// Every key of toJson, in order: "model", "mesh", then the docs/DESIGN.md §4 keys and the corner
 /// and fallback keys. The one list the table, the JSON and every CSV follow.
 const std::vector<std::string>& metricKeys();
 

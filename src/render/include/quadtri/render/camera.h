@@ -1,8 +1,8 @@
 // The pinhole camera of Mitsuba 3's `perspective` sensor.
 #pragma once
 
-#include "quadtri/math/vec.h"
 #include "quadtri/geometry/accel.h"
+#include "quadtri/math/vec.h"
 
 namespace quadtri {
 

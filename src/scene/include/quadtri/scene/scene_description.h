@@ -1,4 +1,4 @@
-// A scene file's content as validated, typed values (DESIGN.md §5): what the renderer is built
+// A scene file's content as validated, typed values (docs/DESIGN.md §5): what the renderer is built
 // from. No rendering objects live here; every record keeps the "FILE:LINE" it came from so that
 // later stages can name it in their errors.
 #pragma once
@@ -10,8 +10,8 @@
 #include <variant>
 #include <vector>
 
-#include "quadtri/math/vec.h"
 #include "quadtri/math/color.h"
+#include "quadtri/math/vec.h"
 #include "quadtri/render/camera.h"
 
 namespace quadtri {
