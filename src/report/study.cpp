@@ -74,9 +74,9 @@ std::vector<StudyRow> studyMesh(const StudyMesh& entry, const std::vector<std::s
   return rows;
 }
 
-// A number as the summary prints it.
+// A number as the summary prints it ("-" if it is not finite, which no metric should be).
 std::string number(double x) {
-  return fmt::format("{:.4g}", x);
+  return std::isfinite(x) ? fmt::format("{:.4g}", x) : "-";
 }
 
 // Text for a Markdown table cell: no line breaks, '|' escaped.
@@ -100,8 +100,9 @@ std::string worstCell(const std::optional<StudyWorst>& worst) {
   return fmt::format("{} ({})", number(worst->value), cell(worst->mesh));
 }
 
+// Keeps the largest finite value and the first mesh that has it.
 void raise(std::optional<StudyWorst>& worst, double value, const std::string& mesh) {
-  if (!worst || value > worst->value) worst = StudyWorst{value, mesh};
+  if (std::isfinite(value) && (!worst || value > worst->value)) worst = StudyWorst{value, mesh};
 }
 
 }  // namespace
