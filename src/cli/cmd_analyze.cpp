@@ -1,7 +1,6 @@
 // `quadtri analyze MESH --model NAME|all [--json]`: the docs/DESIGN.md §4 metrics of each model.
 #include <fmt/core.h>
 
-#include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
@@ -74,36 +73,20 @@ Action addAnalyzeCommand(CLI::App& app) {
     const auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     std::vector<ModelMetrics> rows;
     for (const std::string& name : names) {
-      const auto start = std::chrono::steady_clock::now();
-      const std::unique_ptr<SurfaceModel> model = makeModel(name, mesh);
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      rows.push_back(analyzeModel(*model, opt->mesh, input.truth, seconds, opt->analysis));
-      if (!opt->heatmaps.empty()) {
-        for (const auto& path :
-             writeHeatmaps(*model, opt->heatmaps, input.description, opt->heatmapWidth))
-          fmt::print(stderr, "wrote {}\n", path.string());
-        for (const auto& path : writeTessellationViews(*model, opt->heatmaps))
-          fmt::print(stderr, "wrote {}\n", path.string());
-      }
+      std::function<void(const SurfaceModel&)> heatmaps;
+      if (!opt->heatmaps.empty())
+        heatmaps = [&](const SurfaceModel& model) {
+          for (const auto& path :
+               writeHeatmaps(model, opt->heatmaps, input.description, opt->heatmapWidth))
+            fmt::print(stderr, "wrote {}\n", path.string());
+          for (const auto& path : writeTessellationViews(model, opt->heatmaps))
+            fmt::print(stderr, "wrote {}\n", path.string());
+        };
+      rows.push_back(
+          analyzeNamedModel(name, mesh, opt->mesh, input.truth, opt->analysis, heatmaps));
     }
     if (opt->csv) {
-      // The JSON keys in their order are the columns, so the CSV and JSON always agree.
-      std::string header, body;
-      for (const ModelMetrics& m : rows) {
-        const nlohmann::ordered_json row = toJson(m);
-        std::string line;
-        for (const auto& [key, value] : row.items()) {
-          if (body.empty()) header += (header.empty() ? "" : ",") + key;
-          line += line.empty() ? "" : ",";
-          if (value.is_string())
-            line += value.get<std::string>();
-          else if (!value.is_null())
-            line += value.dump();
-        }
-        body += line + "\n";
-      }
-      fmt::print("{}\n{}", header, body);
+      fmt::print("{}", metricsCsv(rows));
     } else if (!opt->json) {
       fmt::print("mesh: {} ({} triangles)\n{}", opt->mesh, mesh->triangleCount(),
                  metricsTable(rows));

@@ -8,6 +8,7 @@
 #include "normal_flags.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/surface/convert_output.h"
+#include "quadtri/surface/corner_stats.h"
 #include "quadtri/surface/model_memory.h"
 
 namespace quadtri::cli {
@@ -54,6 +55,8 @@ Action addConvertCommand(CLI::App& app) {
     const std::unique_ptr<SurfaceModel> model = makeModel(opt->model, mesh);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (const std::optional<std::string> warning = conversionWarning(*model, input.description))
+      fmt::print(stderr, "warning: {}\n", *warning);
     const size_t written = writeConversion(*model, tessellation, opt->output);
     const std::string what = written > 0 ? fmt::format("{} triangles, tessellation {}", written,
                                                        tessellationName(tessellation))

@@ -115,6 +115,7 @@ Action addRenderCommand(CLI::App& app) {
     overrideNormals(description, opt->normals.sourceOverride(), opt->normals.creaseOverride());
     BuiltScene built = buildScene(
         description, opt->model.empty() ? std::nullopt : std::optional(opt->model), memoryLimit);
+    for (const std::string& warning : built.warnings) fmt::print(stderr, "warning: {}\n", warning);
     RenderOptions options = built.options;
     if (sppGiven) options.samplesPerPixel = opt->spp;
     if (opt->seed) options.seed = *opt->seed;

@@ -19,5 +19,6 @@ Action addConvertCommand(CLI::App& app);
 Action addFigureCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
+Action addStudyCommand(CLI::App& app);
 
 }  // namespace quadtri::cli

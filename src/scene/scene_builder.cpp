@@ -14,6 +14,7 @@
 #include "quadtri/render/integrator/direct_integrator.h"
 #include "quadtri/render/integrator/normals_integrator.h"
 #include "quadtri/render/integrator/path_integrator.h"
+#include "quadtri/surface/corner_stats.h"
 #include "quadtri/surface/model_memory.h"
 
 namespace quadtri {
@@ -194,6 +195,10 @@ BuiltScene buildScene(const SceneDescription& description,
       transformMesh(mesh, s.toWorld, s.flipNormals);
       std::shared_ptr<const SurfaceModel> converted =
           makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
+      if (isFile)
+        if (std::optional<std::string> warning = conversionWarning(
+                *converted, fmt::format("{} {}", s.location, s.filename.string())))
+          built.warnings.push_back(std::move(*warning));
       scene.addModel(std::move(converted), tessellation, bsdf, s.areaRadiance, name);
     });
   }

@@ -115,6 +115,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   patches_.resize(m.triangleCount());
   frames_.resize(m.triangleCount());
   std::vector<QuadricCoeffs> pencils(m.triangleCount());
+  std::vector<uint8_t> fallbacks(m.triangleCount(), 0);
   tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
     CornerData data;
     for (int k = 0; k < 3; ++k) {
@@ -123,6 +124,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       data.arcMidpoint[k] = edges[topo.edgeOf[t][k]].arcMidpoint;
     }
     const QuadricFit fit = fitQuadric(data);
+    fallbacks[t] = fit.pointFallback;
     QuadricPatch& patch = patches_[t];
     patch.q = fit.q;
     pencils[t] = fit.pencil;
@@ -186,6 +188,8 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     }
   });
   addBridges(topo);
+  for (size_t t = 0; t < m.triangleCount(); ++t) fallbacks[t] |= frames_[t].flat;
+  setFallbacks(std::move(fallbacks));
 }
 
 bool RobustImplicitModel::coversItself(size_t t) const {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "quadtri/render/integrator/integrator.h"
 #include "quadtri/render/render_scene.h"
@@ -18,6 +19,9 @@ struct BuiltScene {
   std::shared_ptr<const Integrator> integrator;
   RenderOptions options;      ///< samplesPerPixel, seed and filter from the description
   size_t inputTriangles = 0;  ///< triangles of the obj/ply meshes before any model
+  /// One line per obj/ply shape whose model folds or falls back more than the conversion
+  /// warning allows (conversionWarning, corner_stats.h), naming the shape's element.
+  std::vector<std::string> warnings;
 };
 
 /// Builds every shape, BSDF and emitter. obj/ply meshes are loaded with their `normals`

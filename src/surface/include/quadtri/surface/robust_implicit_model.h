@@ -43,7 +43,8 @@ namespace quadtri {
 /// ring around the teapot's knob), the quadric leaves its wedge or misses the lines evaluate
 /// projects along, and its patch would not cover the triangle. Such a patch falls back to the
 /// triangle's own plane (the same edge planes then clip it to the triangle), and its bridges
-/// join it to its neighbours: a flat facet rather than a hole.
+/// join it to its neighbours: a flat facet rather than a hole. fellBack(t): patch t fell back to
+/// its triangle's plane, or its triangle has no extent (QuadricFit::pointFallback).
 class RobustImplicitModel final : public SurfaceModel {
  public:
   explicit RobustImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
