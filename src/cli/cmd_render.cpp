@@ -2,7 +2,6 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -10,8 +9,7 @@
 #include "commands.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
-#include "quadtri/scene/scene_builder.h"
-#include "quadtri/scene/scene_loader.h"
+#include "quadtri/scene/scene_render.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri::cli {
@@ -68,22 +66,17 @@ Action addRenderCommand(CLI::App& app) {
     if (timeGiven && !(opt->timeLimit > 0.0))
       fail("--time {}: expected a positive number of seconds", opt->timeLimit);
 
-    SceneDescription description = loadSceneDescription(opt->scene, defines);
-    for (const auto& [name, value] : defines)
-      if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
-          description.defaultNames.end())
-        fmt::print(stderr,
-                   "warning: -D {}={}: {} has no <default name=\"{}\">; the value reaches only "
-                   "a ${} in the file\n",
-                   name, value, opt->scene, name, name);
-    if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
-    BuiltScene built =
-        buildScene(description, opt->model.empty() ? std::nullopt : std::optional(opt->model));
-    RenderOptions options = built.options;
-    if (sppGiven) options.samplesPerPixel = opt->spp;
-    if (opt->seed) options.seed = *opt->seed;
-    options.threads = opt->threads;
-    options.timeLimitSeconds = opt->timeLimit;
+    SceneRenderRequest request;
+    request.defines = defines;
+    if (!opt->model.empty()) request.model = opt->model;
+    if (sppGiven) request.samplesPerPixel = opt->spp;
+    request.seed = opt->seed;
+    request.threads = opt->threads;
+    request.timeLimitSeconds = opt->timeLimit;
+    request.warn = [](const std::string& message) { fmt::print(stderr, "warning: {}\n", message); };
+    PreparedRender prepared = prepareSceneRender(opt->scene, request);
+    const BuiltScene& built = prepared.built;
+    RenderOptions& options = prepared.options;
     options.cancel = &interrupted;
     options.progress = isatty(STDERR_FILENO) != 0;
 
