@@ -28,3 +28,17 @@ assert abs(z - want) < 1e-6, f"hit z {z}, expected {want} (the unit sphere)"
 assert max(abs(nx - 0.1), abs(ny - 0.05), abs(nz - want)) < 1e-5, f"normal ({nx},{ny},{nz})"
 print(f"install: consumer built against the installed package; hit the sphere at z = {want:.9f}")
 PY
+# The Python module, when built: imported from the prefix, the same ray cast from Python.
+if [ -d "$work/prefix/lib/python3/dist-packages/quadtri" ]; then
+  py=$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
+  PYTHONPATH="$work/prefix/lib/python3/dist-packages" "${py:-python3}" - <<'PY'
+import quadtri
+m = quadtri.Model("quadric-implicit-robust", *quadtri.load_mesh("icosphere:1"))
+hit = quadtri.RayScene([m]).cast_rays([0.1, 0.05, 3.0], [0.0, 0.0, -1.0])
+z = 3.0 - hit["t"][0]
+want = (1 - 0.1**2 - 0.05**2) ** 0.5
+assert abs(z - want) < 1e-9, f"hit z {z}, expected {want}"
+assert "/dist-packages/quadtri/" in quadtri.__file__, quadtri.__file__
+print(f"install: the Python module imports from the prefix; hit the sphere at z = {z:.9f}")
+PY
+fi

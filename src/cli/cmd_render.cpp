@@ -3,7 +3,6 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdio>
 
 #include "commands.h"
@@ -13,8 +12,7 @@
 #include "quadtri/render/image_io.h"
 #include "quadtri/render/render_state.h"
 #include "quadtri/scene/render_key.h"
-#include "quadtri/scene/scene_builder.h"
-#include "quadtri/scene/scene_loader.h"
+#include "quadtri/scene/scene_render.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri::cli {
@@ -102,25 +100,22 @@ Action addRenderCommand(CLI::App& app) {
     // a second one ends the process at once, leaving no temporary file.
     const StopSignals signals;
 
-    SceneDescription description = loadSceneDescription(opt->scene, defines);
-    for (const std::string& note : description.notes) fmt::print(stderr, "{}\n", note);
-    for (const auto& [name, value] : defines)
-      if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
-          description.defaultNames.end())
-        fmt::print(stderr,
-                   "warning: -D {}={}: {} has no <default name=\"{}\">; the value reaches only "
-                   "a ${} in the file\n",
-                   name, value, opt->scene, name, name);
-    if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
-    overrideNormals(description, opt->normals.sourceOverride(), opt->normals.creaseOverride());
-    BuiltScene built = buildScene(
-        description, opt->model.empty() ? std::nullopt : std::optional(opt->model), memoryLimit);
-    for (const std::string& warning : built.warnings) fmt::print(stderr, "warning: {}\n", warning);
-    RenderOptions options = built.options;
-    if (sppGiven) options.samplesPerPixel = opt->spp;
-    if (opt->seed) options.seed = *opt->seed;
-    options.threads = opt->threads;
-    options.timeLimitSeconds = opt->timeLimit;
+    SceneRenderRequest request;
+    request.defines = defines;
+    if (!opt->model.empty()) request.model = opt->model;
+    if (sppGiven) request.samplesPerPixel = opt->spp;
+    request.seed = opt->seed;
+    request.threads = opt->threads;
+    request.timeLimitSeconds = opt->timeLimit;
+    request.normals = opt->normals.sourceOverride();
+    request.creaseAngleDegrees = opt->normals.creaseOverride();
+    request.maxMemoryBytes = memoryLimit;
+    request.warn = [](const std::string& message) { fmt::print(stderr, "warning: {}\n", message); };
+    request.note = [](const std::string& message) { fmt::print(stderr, "{}\n", message); };
+    PreparedRender prepared = prepareSceneRender(opt->scene, request);
+    const SceneDescription& description = prepared.description;
+    const BuiltScene& built = prepared.built;
+    RenderOptions& options = prepared.options;
     options.cancel = &StopSignals::stopRequested();
     options.progress = isatty(STDERR_FILENO) != 0;
     const PerspectiveCamera& camera = built.scene->camera();
