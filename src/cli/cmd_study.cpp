@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/math/error.h"
 #include "quadtri/report/study.h"
 #include "quadtri/surface/model.h"
@@ -15,7 +16,8 @@ namespace quadtri::cli {
 
 Action addStudyCommand(CLI::App& app) {
   struct Options {
-    std::string source = "data/corpus-manifest.csv", corpus, out, normals = "file", shard = "1/1";
+    std::string source = "data/corpus-manifest.csv", corpus, out, shard = "1/1";
+    NormalFlags normals;
     std::vector<std::string> models;
     int threads = 0;
     bool quiet = false;
@@ -40,10 +42,10 @@ Action addStudyCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--seed", opt->analysis.crack.seed, "Seed of the crack-rate lines")
       ->capture_default_str();
-  sub->add_option("--normals", opt->normals,
-                  "Vertex normals: file, average (thesis eq. 2.8) or angle")
-      ->check(CLI::IsMember({"file", "average", "angle"}))
-      ->capture_default_str();
+  addNormalFlags(sub, opt->normals,
+                 "Vertex normals: file (as given; angle-weighted and split at --crease-angle when "
+                 "missing), average (thesis eq. 2.8) or angle (angle-weighted, split at "
+                 "--crease-angle)");
   sub->add_option("--shard", opt->shard,
                   "I/N: only the meshes whose 0-based index i has i % N == I-1")
       ->capture_default_str();
@@ -56,7 +58,7 @@ Action addStudyCommand(CLI::App& app) {
     StudyOptions options;
     options.models = opt->models;
     options.analysis = opt->analysis;
-    options.normals = parseNormalSource(opt->normals);
+    options.normals = opt->normals.options();
     options.threads = opt->threads;
     options.shard = StudyShard::parse(opt->shard);
     for (const std::string& model : options.models)
@@ -90,7 +92,8 @@ Action addStudyCommand(CLI::App& app) {
     const std::vector<StudyRow> rows = runStudy(meshes, options);
     const std::string what =
         fmt::format("From {}; shard {}; {} crack-rate lines, seed {}; normals {}.", from,
-                    opt->shard, opt->analysis.crack.lines, opt->analysis.crack.seed, opt->normals);
+                    opt->shard, opt->analysis.crack.lines, opt->analysis.crack.seed,
+                    opt->normals.source.empty() ? std::string("file") : opt->normals.source);
     for (const fs::path& path : writeStudy(opt->out, rows, what))
       fmt::print("wrote {}\n", path.string());
     size_t failed = 0;

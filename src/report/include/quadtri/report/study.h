@@ -55,8 +55,8 @@ struct StudyProgress {
 struct StudyOptions {
   std::vector<std::string> models;  ///< empty: modelNames()
   AnalysisOptions analysis;
-  NormalSource normals = NormalSource::File;
-  int threads = 0;  ///< worker threads over meshes and inside each analysis; 0: all cores
+  NormalOptions normals;  ///< as --normals and --crease-angle
+  int threads = 0;        ///< worker threads over meshes and inside each analysis; 0: all cores
   StudyShard shard;
   /// Called from worker threads, one call at a time.
   std::function<void(const StudyProgress&)> onProgress;
