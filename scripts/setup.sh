@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev libeigen3-dev libassimp-dev libopenimageio-dev libpugixml-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
-  clang-format fonts-dejavu-core assimp-testmodels
+  clang-format fonts-dejavu-core python3 assimp-testmodels
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -7,8 +7,8 @@
 #include <array>
 #include <nlohmann/json.hpp>
 
-#include "quadtri/math/error.h"
 #include "quadtri/geometry/model_geometry.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

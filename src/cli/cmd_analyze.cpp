@@ -1,10 +1,11 @@
-// `quadtri analyze MESH --model NAME|all [--json]`: the DESIGN.md §4 metrics of each model.
+// `quadtri analyze MESH --model NAME|all [--json]`: the docs/DESIGN.md §4 metrics of each model.
 #include <fmt/core.h>
 
 #include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/analysis/heatmaps.h"
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/analysis/tessellation_view.h"
@@ -16,7 +17,8 @@ namespace quadtri::cli {
 
 Action addAnalyzeCommand(CLI::App& app) {
   struct Options {
-    std::string mesh, model = "all", tessellation = "8", normals = "file", heatmaps;
+    std::string mesh, model = "all", tessellation = "8", heatmaps;
+    NormalFlags normals;
     bool json = false, csv = false;
     int heatmapWidth = 1200;
     AnalysisOptions analysis;
@@ -35,10 +37,10 @@ Action addAnalyzeCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--tessellation", opt->tessellation, "Lattice level N, or 'thesis' (50x50 grid)")
       ->capture_default_str();
-  sub->add_option("--normals", opt->normals,
-                  "Vertex normals: file, average (thesis eq. 2.8) or angle")
-      ->check(CLI::IsMember({"file", "average", "angle"}))
-      ->capture_default_str();
+  addNormalFlags(sub, opt->normals,
+                 "Vertex normals: file (a built-in shape's analytic ones; angle-weighted, split "
+                 "at --crease-angle, for a file without normals), average (thesis eq. 2.8) or "
+                 "angle (angle-weighted, split at --crease-angle)");
   sub->add_option("--heatmaps", opt->heatmaps,
                   "Folder for PNGs: per-patch heatmaps of the normal as colour and, for implicit "
                   "models, (f_i o f_p)(u,v) and |n_p x n_i| (thesis figs. 5.6, 6.2); and 3D views "
@@ -68,7 +70,7 @@ Action addAnalyzeCommand(CLI::App& app) {
             std::max(budget.bytesPerTriangle,
                      modelBytesPerTriangle(name, Tessellation::thesis(), ModelUse::ConvertMesh));
     }
-    BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals), &budget);
+    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     const auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     std::vector<ModelMetrics> rows;
     for (const std::string& name : names) {

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/surface/convert_output.h"
 #include "quadtri/surface/model_memory.h"
@@ -13,7 +14,8 @@ namespace quadtri::cli {
 
 Action addConvertCommand(CLI::App& app) {
   struct Options {
-    std::string mesh, model, output, tessellation = "8", normals = "file";
+    std::string mesh, model, output, tessellation = "8";
+    NormalFlags normals;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -32,11 +34,10 @@ Action addConvertCommand(CLI::App& app) {
                   "Lattice level N (N² triangles per patch) or 'thesis' (50x50 grid, 4802 "
                   "triangles per patch)")
       ->capture_default_str();
-  sub->add_option("--normals", opt->normals,
-                  "Shading normals: file (as given; computed by average when missing), average "
-                  "(thesis eq. 2.8) or angle (angle-weighted)")
-      ->check(CLI::IsMember({"file", "average", "angle"}))
-      ->capture_default_str();
+  addNormalFlags(sub, opt->normals,
+                 "Shading normals: file (as given; angle-weighted and split at --crease-angle "
+                 "when missing), average (thesis eq. 2.8) or angle (angle-weighted, split at "
+                 "--crease-angle)");
   const auto maxMemory = addMaxMemoryOption(*sub);
   return [opt, maxMemory]() {
     const Tessellation tessellation = Tessellation::parse(opt->tessellation);
@@ -47,7 +48,7 @@ Action addConvertCommand(CLI::App& app) {
         opt->model, tessellation,
         std::filesystem::path(opt->output).extension() == ".json" ? ModelUse::ConvertJson
                                                                   : ModelUse::ConvertMesh);
-    BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals), &budget);
+    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<SurfaceModel> model = makeModel(opt->model, mesh);

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/io/stop_signals.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
@@ -44,6 +45,7 @@ Action addRenderCommand(CLI::App& app) {
     double timeLimit = 0.0, checkpoint = 0.0;
     std::optional<uint64_t> seed;
     std::string resume;
+    NormalFlags normals;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -61,6 +63,11 @@ Action addRenderCommand(CLI::App& app) {
   CLI::Option* timeOption = sub->add_option("--time", opt->timeLimit,
                                             "Time budget in seconds; unfinished pixels stay black");
   sub->add_option("--seed", opt->seed, "Sampler seed (overrides the sampler)");
+  addNormalFlags(sub, opt->normals,
+                 "Shading normals of every obj/ply shape, overriding the scene's: file (as "
+                 "given; angle-weighted and split at --crease-angle when missing), average "
+                 "(thesis eq. 2.8) or angle (angle-weighted, split at --crease-angle)",
+                 "");
   const auto maxMemory = addMaxMemoryOption(*sub);
   CLI::Option* checkpointOption = sub->add_option(
       "--checkpoint", opt->checkpoint,
@@ -96,6 +103,7 @@ Action addRenderCommand(CLI::App& app) {
     const StopSignals signals;
 
     SceneDescription description = loadSceneDescription(opt->scene, defines);
+    for (const std::string& note : description.notes) fmt::print(stderr, "{}\n", note);
     for (const auto& [name, value] : defines)
       if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
           description.defaultNames.end())
@@ -104,6 +112,7 @@ Action addRenderCommand(CLI::App& app) {
                    "a ${} in the file\n",
                    name, value, opt->scene, name, name);
     if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
+    overrideNormals(description, opt->normals.sourceOverride(), opt->normals.creaseOverride());
     BuiltScene built = buildScene(
         description, opt->model.empty() ? std::nullopt : std::optional(opt->model), memoryLimit);
     RenderOptions options = built.options;

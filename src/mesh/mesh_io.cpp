@@ -33,7 +33,7 @@ std::string lowerExtension(const std::filesystem::path& p) {
 
 }  // namespace
 
-TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source,
+TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals,
                       MemoryBudget* budget) {
   const std::string name = path.string();
   if (!std::filesystem::exists(path)) fail("{}: no such file", name);
@@ -95,8 +95,7 @@ TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source,
     }
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
-  if (!allHaveNormals || source != NormalSource::File)
-    computeVertexNormals(mesh, source == NormalSource::File ? NormalSource::Average : source);
+  applyNormals(mesh, normals);
   mesh.validate(name);
   return mesh;
 }
@@ -172,10 +171,11 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
 
 namespace quadtri {
 
-BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source, MemoryBudget* budget) {
+BuiltinMesh loadMeshSpec(const std::string& spec, const NormalOptions& normals,
+                         MemoryBudget* budget) {
   if (std::filesystem::exists(spec)) {
     BuiltinMesh b;
-    b.mesh = loadMesh(spec, source, budget);
+    b.mesh = loadMesh(spec, normals, budget);
     b.description = std::filesystem::path(spec).filename().string();
     return b;
   }
@@ -188,7 +188,7 @@ BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source, MemoryBud
     chargeMemory(*budget, uint64_t(b->mesh.triangleCount()) * budget->bytesPerTriangle, spec,
                  fmt::format("building {} per triangle of its {} triangles",
                              formatBytes(budget->bytesPerTriangle), b->mesh.triangleCount()));
-  if (source != NormalSource::File) computeVertexNormals(b->mesh, source);
+  applyNormals(b->mesh, normals);  // File keeps the shape's analytic normals
   return std::move(*b);
 }
 

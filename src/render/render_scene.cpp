@@ -1,7 +1,7 @@
 #include "quadtri/render/render_scene.h"
 
-#include "quadtri/math/error.h"
 #include "quadtri/geometry/model_geometry.h"
+#include "quadtri/math/error.h"
 #include "quadtri/render/emitter/constant_emitter.h"
 #include "quadtri/render/emitter/mesh_area_emitter.h"
 #include "quadtri/render/emitter/point_emitter.h"

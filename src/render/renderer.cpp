@@ -39,7 +39,10 @@ struct PixelResult {
 PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
                         const RenderOptions& options, int x, int y) {
   const PerspectiveCamera& camera = scene.camera();
-  const uint64_t index = uint64_t(y) * uint64_t(camera.width()) + uint64_t(x);
+  // The pixel's index on the whole film, so that a crop window draws the same samples as the
+  // same pixels of the full render.
+  const uint64_t index =
+      uint64_t(y + camera.cropY()) * uint64_t(camera.filmWidth()) + uint64_t(x + camera.cropX());
   Pcg32 rng(mix64(options.seed ^ mix64(index)), mix64(index) ^ options.seed);
   const AdaptiveSampling* adaptive = integrator.adaptive();
   const uint64_t target =
@@ -47,7 +50,7 @@ PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
   PixelResult r;
   Color sum = Color::Zero();
   double lumSum = 0.0, lumSquares = 0.0;
-  const Vec2 centre(x + 0.5, y + 0.5);
+  const Vec2 centre(x + camera.cropX() + 0.5, y + camera.cropY() + 0.5);
   while (r.samples < target) {
     uint64_t batch = target - r.samples;
     if (adaptive)

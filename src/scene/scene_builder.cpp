@@ -132,16 +132,24 @@ BuiltScene buildScene(const SceneDescription& description,
   camera.farClip = sensor.farClip;
   camera.width = sensor.film.width;
   camera.height = sensor.film.height;
+  camera.cropX = sensor.film.cropX;
+  camera.cropY = sensor.film.cropY;
+  camera.cropWidth = sensor.film.cropWidth;
+  camera.cropHeight = sensor.film.cropHeight;
+  camera.principalPointOffset = sensor.principalPointOffset;
   at(sensor.location, toString(sensor), [&] {
-    chargeMemory(budget, renderImageBytes(camera.width, camera.height), "the film",
-                 fmt::format("a {}x{} image", camera.width, camera.height));
-    scene.setCamera(PerspectiveCamera(camera));
+    const PerspectiveCamera film(camera);  // its width and height are the crop window's
+    chargeMemory(budget, renderImageBytes(film.width(), film.height()), "the film",
+                 fmt::format("a {}x{} image", film.width(), film.height()));
+    scene.setCamera(film);
   });
   built.options.samplesPerPixel = sensor.sampler.sampleCount;
   built.options.seed = uint64_t(uint32_t(sensor.sampler.seed));
-  built.options.filter.kind = sensor.film.filter.type == FilterDesc::Type::Box
-                                  ? ReconstructionFilter::Kind::Box
-                                  : ReconstructionFilter::Kind::Gaussian;
+  built.options.filter.kind =
+      sensor.film.filter.type == FilterDesc::Type::Box    ? ReconstructionFilter::Kind::Box
+      : sensor.film.filter.type == FilterDesc::Type::Tent ? ReconstructionFilter::Kind::Tent
+                                                          : ReconstructionFilter::Kind::Gaussian;
+  built.options.filter.tentRadius = sensor.film.filter.radius;
   built.options.filter.stddev = sensor.film.filter.stddev;
   built.integrator = at(description.integrator.location, toString(description.integrator), [&] {
     return makeIntegrator(description.integrator, sensor.sampler.sampleCount);
@@ -175,7 +183,7 @@ BuiltScene buildScene(const SceneDescription& description,
           s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
       budget.bytesPerTriangle = modelBytesPerTriangle(model, tessellation, ModelUse::Render);
       TriangleMesh mesh =
-          isFile ? loadMesh(s.filename, NormalSource::File, &budget)
+          isFile ? loadMesh(s.filename, s.normals, &budget)
                  : (s.type == ShapeDesc::Type::Rectangle ? rectangleMesh() : cubeMesh());
       if (s.faceNormals) {
         mesh.normals.clear();

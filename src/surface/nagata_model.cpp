@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/surface/creases.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/local_patches.h"
 
@@ -31,9 +32,9 @@ Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const
   return (dx.dot(dv) / oneMinusDeltaC) * v + (dx.dot(v) / deltaC) * dv;
 }
 
-NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
-    : SurfaceModel(std::move(mesh)), sharesEdges_(edgesShareNormals(this->mesh())) {
+NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
+  const EdgeEnds ends = edgeEnds(m);
   curvatures_.resize(m.triangleCount());
   patches_.resize(m.triangleCount());
   for (size_t t = 0; t < m.triangleCount(); ++t) {
@@ -41,9 +42,17 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
     QuadraticPatch& patch = patches_[t];
     for (int k = 0; k < 3; ++k) {
       const int l = (k + 1) % 3;
-      const Vec3 c = nagataCurvature(tri.p[k], tri.n[k], tri.p[l], tri.n[l]);
-      curvatures_[t][k] = c;
+      const auto& [ek, el] = ends[t][k];
       patch.v[k] = tri.p[k];
+      if (ek.crease() || el.crease()) {
+        // At a crease the tangent follows the crease line both sides share (creases.h).
+        patch.b[k] = creaseControlPoint(tri.p[k], ek, tri.n[k], tri.p[l], el, tri.n[l]);
+        curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * patch.b[k];
+        continue;
+      }
+      const Vec3 c =
+          nagataCurvature(tri.p[k], ek.normalFor(tri.n[k]), tri.p[l], el.normalFor(tri.n[l]));
+      curvatures_[t][k] = c;
       // x(t) = x0 + (Δx − c) t + c t² in Bernstein form: control point x0 + (Δx − c)/2.
       patch.b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
     }

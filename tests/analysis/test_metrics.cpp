@@ -2,8 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "quadtri/analysis/metrics.h"
 #include "fixtures/sphere_patches.h"
+#include "quadtri/analysis/metrics.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"

@@ -1,4 +1,4 @@
-// How well a model meets the four constraints and what it costs (DESIGN.md §4): free functions
+// How well a model meets the four constraints and what it costs (docs/DESIGN.md §4): free functions
 // over a SurfaceModel, and the per-model record that `quadtri analyze` prints.
 #pragma once
 
@@ -73,7 +73,7 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
                           const std::optional<AnalyticSurface>& truth, double convertSeconds,
                           const AnalysisOptions& options = {});
 
-/// The DESIGN.md §4 keys plus "model" and "mesh", in the table's order.
+/// The docs/DESIGN.md §4 keys plus "model" and "mesh", in the table's order.
 nlohmann::ordered_json toJson(const ModelMetrics& metrics);
 
 /// A text table: one row per model, one column per key, null as "-", columns aligned.

@@ -20,7 +20,9 @@ struct BuiltScene {
   size_t inputTriangles = 0;  ///< triangles of the obj/ply meshes before any model
 };
 
-/// Builds every shape, BSDF and emitter. obj/ply meshes are loaded, placed by to_world
+/// Builds every shape, BSDF and emitter. obj/ply meshes are loaded with their `normals`
+/// (ShapeDesc::normals: a file without normals gets them split at the crease angle), placed by
+/// to_world
 /// (positions by the matrix, normals by its inverse transpose; a mirroring matrix reverses the
 /// winding so the face normals keep agreeing with the shading normals) and converted by their
 /// model, or by `modelOverride` when given; rectangles and cubes are `flat` triangle meshes;

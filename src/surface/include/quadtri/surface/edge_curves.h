@@ -25,9 +25,11 @@ bool edgeEndsSwapped(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3&
 Vec3 edgeControlPoint(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj);
 
 /// Control points of every triangle's edges: result[t][k] belongs to local edge k (corners k
-/// and (k+1)%3). Each mesh edge is solved once, from normals both sides share: at each endpoint
-/// the normalised mean of the corner normals that the edge's triangles have there, which is the
-/// corner normal itself unless the file splits normals at that vertex (a crease).
+/// and (k+1)%3). Each mesh edge is solved once, from data both sides share (creases.h): where
+/// its triangles carry the same normal at each end, edgeControlPoint of those normals; where
+/// they split normals at an end by less than kCreaseMinDegrees, edgeControlPoint of the
+/// normalised means; at a crease (normals split further), creaseControlPoint, whose tangent
+/// there follows the crease line n₁ × n₂ (a cube's edges stay straight).
 std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh);
 
 /// The quadratic Bézier triangle with corners v[k] and edge control points b[k] (edge k joins

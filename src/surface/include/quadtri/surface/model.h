@@ -1,4 +1,5 @@
-// One interface for every way of turning a triangle mesh into render primitives (DESIGN.md §3).
+// One interface for every way of turning a triangle mesh into render primitives (docs/DESIGN.md
+// §3).
 #pragma once
 
 #include <memory>

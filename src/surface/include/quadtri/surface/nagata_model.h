@@ -33,14 +33,15 @@ Vec3 nagataCurvature(const Vec3& x0, const Vec3& n0, const Vec3& x1, const Vec3&
 ///
 /// Corners are interpolated and the corner tangent planes are the vertex tangent planes, so the
 /// geometric normal there is the vertex normal (except on edges the zero rule flattens). Each
-/// boundary depends only on its edge's corners and normals: C0 where the mesh shares normals,
-/// cracks at split normals (sharesEdges() is false on such a mesh).
+/// boundary depends only on its edge's corners and the data its sides share there, so
+/// neighbours always share edges (C0): where the mesh splits normals at an end of an edge,
+/// the edge takes creaseControlPoint (its tangent along the crease line n₁ × n₂) and
+/// c = x0 + x1 − 2b; nearly equal split normals are replaced by their mean.
 class NagataModel final : public SurfaceModel {
  public:
   explicit NagataModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "nagata"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
-  bool sharesEdges() const override { return sharesEdges_; }
   nlohmann::json patchJson(size_t t) const override;
 
   /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).
@@ -50,7 +51,6 @@ class NagataModel final : public SurfaceModel {
  private:
   std::vector<std::array<Vec3, 3>> curvatures_;
   std::vector<QuadraticPatch> patches_;
-  bool sharesEdges_;
 };
 
 }  // namespace quadtri

@@ -1,5 +1,5 @@
 // `quadric-implicit-robust`: one corner-exact implicit quadric per triangle, clipped by shared
-// edge planes (DESIGN.md §3, findings on §4.3).
+// edge planes (docs/DESIGN.md §3, findings on §4.3).
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// The corner-exact quadric fit of `quadric-implicit-robust` (DESIGN.md §3, findings on §4.3).
+// The corner-exact quadric fit of `quadric-implicit-robust` (docs/DESIGN.md §3, findings on §4.3).
 #pragma once
 
 #include <array>

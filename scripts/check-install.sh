@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs a built quadtri into a temporary prefix, builds examples/consumer against it with
+# find_package(quadtri), and checks what the consumer prints: a ray straight down through
+# (0.1, 0.05) onto the unit icosphere under quadric-implicit-robust, which reproduces the
+# sphere, hits it at z = sqrt(1 - 0.1² - 0.05²) with the normal (0.1, 0.05, z).
+#   scripts/check-install.sh [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+test -f "$work/prefix/include/quadtri/surface/model.h"
+test -x "$work/prefix/bin/quadtri"
+test -f "$work/prefix/lib/pkgconfig/quadtri.pc" || test -f "$work"/prefix/lib/*/pkgconfig/quadtri.pc
+cmake -S examples/consumer -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/consumer" >/dev/null
+out=$("$work/consumer/quadtri_consumer" icosphere:1 quadric-implicit-robust)
+echo "$out"
+python3 - "$out" <<'PY'
+import re, sys
+m = re.search(r"hit z = ([-0-9.e]+), normal \(([-0-9.e]+), ([-0-9.e]+), ([-0-9.e]+)\)", sys.argv[1])
+assert m, "consumer printed no hit"
+z, nx, ny, nz = map(float, m.groups())
+want = (1 - 0.1**2 - 0.05**2) ** 0.5
+assert abs(z - want) < 1e-6, f"hit z {z}, expected {want} (the unit sphere)"
+assert max(abs(nx - 0.1), abs(ny - 0.05), abs(nz - want)) < 1e-5, f"normal ({nx},{ny},{nz})"
+print(f"install: consumer built against the installed package; hit the sphere at z = {want:.9f}")
+PY
