@@ -67,6 +67,12 @@ uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
   h.add(s.film.height);
   h.add(s.film.filter.type);
   h.add(s.film.filter.stddev);
+  h.add(s.film.filter.radius);
+  h.add(s.film.cropX);
+  h.add(s.film.cropY);
+  h.add(s.film.cropWidth);
+  h.add(s.film.cropHeight);
+  h.addMatrix(s.principalPointOffset);
   h.add(s.sampler.sampleCount);
   h.add(s.sampler.seed);
   const IntegratorDesc& i = d.integrator;
@@ -110,6 +116,8 @@ uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
       h.file(shape.filename);
     h.add(shape.model);
     h.add(shape.tessellation);
+    h.add(shape.normals.source);
+    h.add(shape.normals.creaseAngleDeg);
     h.add(shape.faceNormals);
     h.add(shape.flipNormals);
     h.addMatrix(shape.toWorld);
@@ -122,6 +130,7 @@ uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
   h.add(options.seed);
   h.add(options.filter.kind);
   h.add(options.filter.stddev);
+  h.add(options.filter.tentRadius);
   return h.value();
 }
 

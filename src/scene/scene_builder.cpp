@@ -139,11 +139,10 @@ BuiltScene buildScene(const SceneDescription& description,
   camera.cropHeight = sensor.film.cropHeight;
   camera.principalPointOffset = sensor.principalPointOffset;
   at(sensor.location, toString(sensor), [&] {
-    const int imageWidth = camera.cropWidth > 0 ? camera.cropWidth : camera.width;
-    const int imageHeight = camera.cropHeight > 0 ? camera.cropHeight : camera.height;
-    chargeMemory(budget, renderImageBytes(imageWidth, imageHeight), "the film",
-                 fmt::format("a {}x{} image", imageWidth, imageHeight));
-    scene.setCamera(PerspectiveCamera(camera));
+    const PerspectiveCamera film(camera);  // its width and height are the crop window's
+    chargeMemory(budget, renderImageBytes(film.width(), film.height()), "the film",
+                 fmt::format("a {}x{} image", film.width(), film.height()));
+    scene.setCamera(film);
   });
   built.options.samplesPerPixel = sensor.sampler.sampleCount;
   built.options.seed = uint64_t(uint32_t(sensor.sampler.seed));

@@ -113,11 +113,15 @@ TEST(RenderState, CheckpointsHoldFinishedPixelsWithTheirFinalValues) {
       ASSERT_TRUE((s.pixels[i] == r.image.pixels[i]).all()) << "pixel " << i;
     }
   }
-  // A callback that throws stops the checkpoints, not the render.
+  // A callback that throws stops the checkpoints, not the render. The render lasts far longer
+  // than the 10 ms between checkpoints (64² pixels at 256 samples), so one is always due.
+  RenderScene longer;
+  sphereScene(longer, 64, 64);
+  options.samplesPerPixel = 256;
   options.checkpoint = [](const RenderState&) { fail("disk full"); };
-  const RenderResult failing = render(scene, PathIntegrator({}), options);
+  const RenderResult failing = render(longer, PathIntegrator({}), options);
   EXPECT_EQ(failing.checkpointError, "disk full");
-  EXPECT_EQ(failing.stats.finishedPixels, 32u * 32u);
+  EXPECT_EQ(failing.stats.finishedPixels, 64u * 64u);
 }
 
 TEST(RenderState, MismatchedStatesAndFilesAreRefused) {

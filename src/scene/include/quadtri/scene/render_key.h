@@ -14,8 +14,10 @@ namespace quadtri {
 /// A 64-bit FNV-1a hash of everything the image depends on: quadtri's version, the scene
 /// file's bytes, every value of the description (so included files and -D values count), the
 /// bytes of every mesh file it names, the model override, and the options' samples per pixel,
-/// seed and reconstruction filter. Threads, the time limit and checkpoints do not count: the
-/// image does not depend on them. Throws Error naming a file it cannot read.
+/// seed and reconstruction filter. A field added to SceneDescription must be added here too
+/// (the scene file's bytes catch edits to the file, not -D or command-line overrides). Threads, the
+/// time limit and checkpoints do not count: the image does not depend on them. Throws Error naming
+/// a file it cannot read.
 uint64_t renderKey(const SceneDescription& description, const RenderOptions& options,
                    const std::optional<std::string>& modelOverride);
 
