@@ -48,6 +48,23 @@ TEST(RenderKey, ChangesWithWhatTheImageDependsOnOnly) {
   EXPECT_NE(renderKey(loadSceneDescription(dir / "scene.xml", {{"albedo", "0.6"}}), options,
                       std::nullopt),
             key);
+  // Command-line overrides that reach the description: the shapes' normals.
+  SceneDescription averaged = d;
+  overrideNormals(averaged, NormalSource::Average, std::nullopt);
+  EXPECT_NE(renderKey(averaged, options, std::nullopt), key);
+  SceneDescription creased = d;
+  overrideNormals(creased, std::nullopt, 45.0);
+  EXPECT_NE(renderKey(creased, options, std::nullopt), key);
+  // The film's crop window and principal point, and the tent filter's radius.
+  SceneDescription cropped = d;
+  cropped.sensor.film.cropX = 1;
+  EXPECT_NE(renderKey(cropped, options, std::nullopt), key);
+  SceneDescription shifted = d;
+  shifted.sensor.principalPointOffset = Vec2(0.1, 0.0);
+  EXPECT_NE(renderKey(shifted, options, std::nullopt), key);
+  RenderOptions tent = options;
+  tent.filter.tentRadius = 2.0;
+  EXPECT_NE(renderKey(d, tent, std::nullopt), key);
   // The mesh file's bytes count, not only its name.
   std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n";
   EXPECT_NE(renderKey(d, options, std::nullopt), key);
