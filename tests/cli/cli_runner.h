@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -115,6 +116,16 @@ class CliProcess {
   double cpuSeconds_ = 0.0, wallSeconds_ = 0.0;
   std::chrono::steady_clock::time_point start_;
 };
+
+/// The unsigned integer written just before the first `suffix` in `text` (no std::regex: GCC
+/// 12 warns inside it under the sanitizers), or -1.
+inline long numberBefore(const std::string& text, const std::string& suffix) {
+  const size_t at = text.find(suffix);
+  if (at == std::string::npos) return -1;
+  size_t start = at;
+  while (start > 0 && std::isdigit(static_cast<unsigned char>(text[start - 1]))) --start;
+  return start == at ? -1 : std::stol(text.substr(start, at - start));
+}
 
 /// Files in `dir` whose names contain ".tmp" (writeAtomically's temporary files).
 inline std::vector<std::string> temporaryFiles(const std::filesystem::path& dir) {
