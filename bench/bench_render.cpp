@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "quadtri/geometry/accel.h"
+#include "quadtri/geometry/rng.h"
 #include "quadtri/render/camera.h"
 #include "quadtri/render/render_scene.h"
 #include "quadtri/render/renderer.h"
-#include "quadtri/geometry/rng.h"
 #include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fetches the Utah teapot (npm package `teapot`: 792 vertices, 992 triangles, public domain) and
-# writes it as an OBJ without normals (quadtri computes them by thesis eq. 2.8). Idempotent.
+# writes it as an OBJ without normals (the thesis scenes and scripts give it thesis eq. 2.8 normals
+# with --normals average / normals="average"). Idempotent.
 # Usage: scripts/fetch-teapot.sh OUT.obj
 set -euo pipefail
 out=${1:-data/teapot.obj}

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Measures every model (DESIGN.md §4) on closed icospheres of levels 0-4, a torus, the genus-2
+# Measures every model (docs/DESIGN.md §4) on closed icospheres of levels 0-4, a torus, the genus-2
 # pretzel (irregular marching-tetrahedra data) and the Utah teapot (open: no crack_rate), and
 # their convergence to the true surface under refinement. Writes docs/results/models_*.csv,
 # docs/images/convergence.png and the Markdown fragment docs/results/models.md (its links are
 # relative to docs/, where RESULTS.md includes it).
 #
 # Usage: scripts/measure-models.sh [--lines N] [--levels L]
-#   --lines N   random lines per crack rate (default 100000, DESIGN.md §4)
+#   --lines N   random lines per crack rate (default 100000, docs/DESIGN.md §4)
 #   --levels L  refinement levels 0..L of the convergence study (default 5)
 # Needs a built quadtri (QUADTRI=path/to/quadtri, default build/src/cli/quadtri), and node/npm
 # once for the Utah teapot (scripts/fetch-teapot.sh writes data/teapot.obj). Only bash, awk and
@@ -97,7 +97,7 @@ $(nproc) cores. CSVs: [models_metrics.csv](results/models_metrics.csv) (\`quadtr
 Meshes (triangles): $(triangles). Icospheres, torus (32×16) and genus2 (the built-in genus-2
 pretzel, marching tetrahedra on 24 cells: irregular triangles, slivers, saddles) carry their true
 surface's normals; the teapot (npm \`teapot\`, open) carries thesis eq. 2.8 normals
-(\`--normals average\`) and has no crack rate. Metrics as DESIGN.md §4 defines them; distances
+(\`--normals average\`) and has no crack rate. Metrics as docs/DESIGN.md §4 defines them; distances
 are relative to the mean edge length, 0 where a value is exactly zero.
 
 ### crack_rate ($lines random lines; closed meshes only)

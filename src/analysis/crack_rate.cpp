@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "quadtri/math/error.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {

@@ -1,14 +1,18 @@
 #include "quadtri/analysis/metrics.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
 #include <array>
+#include <chrono>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "quadtri/math/error.h"
 #include "quadtri/geometry/model_geometry.h"
+#include "quadtri/io/csv.h"
+#include "quadtri/math/error.h"
 
 namespace quadtri {
 namespace {
@@ -57,29 +61,22 @@ double vertexPositionError(const SurfaceModel& model) {
   });
 }
 
+CornerStats checkedCornerStats(const SurfaceModel& model) {
+  const CornerStats stats = cornerStats(model);
+  if (stats.nonFinite) {
+    const Vec2& uv = kCornerUv[stats.firstNonFiniteCorner];
+    fail("model '{}': patch {} is not finite at (u, v) = ({}, {})", model.name(),
+         stats.firstNonFinitePatch, uv.x(), uv.y());
+  }
+  return stats;
+}
+
 double vertexNormalErrorDeg(const SurfaceModel& model) {
-  return maxOverPatches(model, [&](size_t t) {
-    double worst = 0.0;
-    for (int k = 0; k < 3; ++k)
-      worst = std::max(worst, angleDegrees(evaluateChecked(model, t, kCornerUv[k]).normal,
-                                           model.mesh().cornerNormal(t, k)));
-    return worst;
-  });
+  return checkedCornerStats(model).maxNormalErrorDeg;
 }
 
 double vertexNormalFlipRate(const SurfaceModel& model) {
-  if (model.patchCount() == 0) return 0.0;
-  const size_t flips = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, model.patchCount()), size_t(0),
-      [&](const tbb::blocked_range<size_t>& range, size_t count) {
-        for (size_t t = range.begin(); t != range.end(); ++t)
-          for (int k = 0; k < 3; ++k)
-            count += evaluateChecked(model, t, kCornerUv[k])
-                         .normal.dot(model.mesh().cornerNormal(t, k)) < 0.0;
-        return count;
-      },
-      [](size_t a, size_t b) { return a + b; });
-  return double(flips) / double(3 * model.patchCount());
+  return checkedCornerStats(model).flipRate();
 }
 
 std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
@@ -150,8 +147,13 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
   m.primitives = geometry.primitiveCount();
   m.memoryBytes = geometry.bytes();
   m.vertexPositionError = vertexPositionError(model);
-  m.vertexNormalErrorDeg = vertexNormalErrorDeg(model);
-  m.vertexNormalFlipRate = vertexNormalFlipRate(model);
+  const CornerStats corners = checkedCornerStats(model);
+  m.vertexNormalErrorDeg = corners.maxNormalErrorDeg;
+  m.vertexNormalFlipRate = corners.flipRate();
+  m.inconsistentCornerRate = corners.inconsistentRate();
+  m.vertexNormalErrorConsistentDeg = corners.maxConsistentNormalErrorDeg;
+  m.vertexNormalFlipRateConsistent = corners.consistentFlipRate();
+  m.fallbackRate = fallbackRate(model);
   const MeshTopology topology(model.mesh());
   if (const std::optional<EdgeContinuity> c =
           edgeContinuity(model, topology, options.edgeSamples)) {
@@ -163,40 +165,104 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
   return m;
 }
 
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json nullable(const std::optional<double>& x) {
+  return x ? Json(*x) : Json(nullptr);
+}
+
+// The one table of keys: name, whether the text table shows it, and its value.
+struct MetricKey {
+  const char* key;
+  bool inTable;
+  Json (*value)(const ModelMetrics&);
+};
+
+const std::vector<MetricKey>& keyTable() {
+  static const std::vector<MetricKey> keys = {
+      {"model", true, [](const ModelMetrics& m) { return Json(m.model); }},
+      {"mesh", false, [](const ModelMetrics& m) { return Json(m.mesh); }},
+      {"triangles", true, [](const ModelMetrics& m) { return Json(m.triangles); }},
+      {"primitives", true, [](const ModelMetrics& m) { return Json(m.primitives); }},
+      {"memory_bytes", true, [](const ModelMetrics& m) { return Json(m.memoryBytes); }},
+      {"convert_seconds", true, [](const ModelMetrics& m) { return Json(m.convertSeconds); }},
+      {"vertex_position_error", true,
+       [](const ModelMetrics& m) { return Json(m.vertexPositionError); }},
+      {"vertex_normal_error_deg", true,
+       [](const ModelMetrics& m) { return Json(m.vertexNormalErrorDeg); }},
+      {"vertex_normal_flip_rate", true,
+       [](const ModelMetrics& m) { return Json(m.vertexNormalFlipRate); }},
+      {"inconsistent_corner_rate", true,
+       [](const ModelMetrics& m) { return Json(m.inconsistentCornerRate); }},
+      {"vertex_normal_error_consistent_deg", true,
+       [](const ModelMetrics& m) { return nullable(m.vertexNormalErrorConsistentDeg); }},
+      {"vertex_normal_flip_rate_consistent", true,
+       [](const ModelMetrics& m) { return nullable(m.vertexNormalFlipRateConsistent); }},
+      {"fallback_rate", true, [](const ModelMetrics& m) { return Json(m.fallbackRate); }},
+      {"c0_gap", true, [](const ModelMetrics& m) { return nullable(m.c0Gap); }},
+      {"c1_angle_deg", true, [](const ModelMetrics& m) { return nullable(m.c1AngleDeg); }},
+      {"crack_rate", true, [](const ModelMetrics& m) { return nullable(m.crackRate); }},
+      {"truth_distance", true, [](const ModelMetrics& m) { return nullable(m.truthDistance); }},
+  };
+  return keys;
+}
+
+}  // namespace
+
+ModelMetrics analyzeNamedModel(const std::string& name,
+                               const std::shared_ptr<const TriangleMesh>& mesh,
+                               const std::string& meshName,
+                               const std::optional<AnalyticSurface>& truth,
+                               const AnalysisOptions& options,
+                               const std::function<void(const SurfaceModel&)>& inspect) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<SurfaceModel> model = makeModel(name, mesh);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ModelMetrics metrics = analyzeModel(*model, meshName, truth, seconds, options);
+  if (inspect) inspect(*model);
+  return metrics;
+}
+
+const std::vector<std::string>& metricKeys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> out;
+    for (const MetricKey& k : keyTable()) out.push_back(k.key);
+    return out;
+  }();
+  return keys;
+}
+
 nlohmann::ordered_json toJson(const ModelMetrics& m) {
-  auto nullable = [](const std::optional<double>& x) {
-    return x ? nlohmann::ordered_json(*x) : nlohmann::ordered_json(nullptr);
-  };
-  return nlohmann::ordered_json{
-      {"model", m.model},
-      {"mesh", m.mesh},
-      {"triangles", m.triangles},
-      {"primitives", m.primitives},
-      {"memory_bytes", m.memoryBytes},
-      {"convert_seconds", m.convertSeconds},
-      {"vertex_position_error", m.vertexPositionError},
-      {"vertex_normal_error_deg", m.vertexNormalErrorDeg},
-      {"vertex_normal_flip_rate", m.vertexNormalFlipRate},
-      {"c0_gap", nullable(m.c0Gap)},
-      {"c1_angle_deg", nullable(m.c1AngleDeg)},
-      {"crack_rate", nullable(m.crackRate)},
-      {"truth_distance", nullable(m.truthDistance)},
-  };
+  Json j = Json::object();
+  for (const MetricKey& k : keyTable()) j[k.key] = k.value(m);
+  return j;
+}
+
+std::string csvValue(const nlohmann::ordered_json& value) {
+  if (value.is_null()) return "";
+  if (value.is_string()) return csvField(value.get<std::string>());
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) return "";
+  return value.dump();
+}
+
+std::string metricsCsv(const std::vector<ModelMetrics>& rows) {
+  std::string out = fmt::format("{}\n", fmt::join(metricKeys(), ","));
+  for (const ModelMetrics& m : rows) {
+    const Json j = toJson(m);
+    std::vector<std::string> fields;
+    for (const std::string& key : metricKeys()) fields.push_back(csvValue(j.at(key)));
+    out += fmt::format("{}\n", fmt::join(fields, ","));
+  }
+  return out;
 }
 
 std::string metricsTable(const std::vector<ModelMetrics>& rows) {
-  const std::vector<std::string> keys = {"model",
-                                         "triangles",
-                                         "primitives",
-                                         "memory_bytes",
-                                         "convert_seconds",
-                                         "vertex_position_error",
-                                         "vertex_normal_error_deg",
-                                         "vertex_normal_flip_rate",
-                                         "c0_gap",
-                                         "c1_angle_deg",
-                                         "crack_rate",
-                                         "truth_distance"};
+  std::vector<std::string> keys;
+  for (const MetricKey& k : keyTable())
+    if (k.inTable) keys.push_back(k.key);
   std::vector<std::vector<std::string>> cells(1, keys);
   for (const ModelMetrics& m : rows) {
     const nlohmann::ordered_json j = toJson(m);

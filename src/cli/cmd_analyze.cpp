@@ -1,21 +1,23 @@
-// `quadtri analyze MESH --model NAME|all [--json]`: the DESIGN.md §4 metrics of each model.
+// `quadtri analyze MESH --model NAME|all [--json]`: the docs/DESIGN.md §4 metrics of each model.
 #include <fmt/core.h>
 
-#include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/analysis/heatmaps.h"
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/analysis/tessellation_view.h"
-#include "commands.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri::cli {
 
 Action addAnalyzeCommand(CLI::App& app) {
   struct Options {
-    std::string mesh, model = "all", tessellation = "8", normals = "file", heatmaps;
+    std::string mesh, model = "all", tessellation = "8", heatmaps;
+    NormalFlags normals;
     bool json = false, csv = false;
     int heatmapWidth = 1200;
     AnalysisOptions analysis;
@@ -34,10 +36,10 @@ Action addAnalyzeCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--tessellation", opt->tessellation, "Lattice level N, or 'thesis' (50x50 grid)")
       ->capture_default_str();
-  sub->add_option("--normals", opt->normals,
-                  "Vertex normals: file, average (thesis eq. 2.8) or angle")
-      ->check(CLI::IsMember({"file", "average", "angle"}))
-      ->capture_default_str();
+  addNormalFlags(sub, opt->normals,
+                 "Vertex normals: file (a built-in shape's analytic ones; angle-weighted, split "
+                 "at --crease-angle, for a file without normals), average (thesis eq. 2.8) or "
+                 "angle (angle-weighted, split at --crease-angle)");
   sub->add_option("--heatmaps", opt->heatmaps,
                   "Folder for PNGs: per-patch heatmaps of the normal as colour and, for implicit "
                   "models, (f_i o f_p)(u,v) and |n_p x n_i| (thesis figs. 5.6, 6.2); and 3D views "
@@ -46,47 +48,45 @@ Action addAnalyzeCommand(CLI::App& app) {
   sub->add_option("--heatmap-width", opt->heatmapWidth,
                   "About how many pixels wide the per-patch heatmaps are")
       ->capture_default_str();
-  return [opt]() {
+  const auto maxMemory = addMaxMemoryOption(*sub);
+  return [opt, maxMemory]() {
     if (opt->heatmapWidth < 100 || opt->heatmapWidth > 10000)
       fail("--heatmap-width {}: expected 100 to 10000 pixels", opt->heatmapWidth);
     opt->analysis.tessellation = Tessellation::parse(opt->tessellation);
     if (opt->analysis.crack.lines == 0) fail("--lines: expected a positive number of lines");
-    BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals));
-    const auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const std::vector<std::string> names =
         opt->model == "all" ? modelNames() : std::vector<std::string>{opt->model};
+    // The mesh and the dearest of its models (built one at a time, traced for the crack rate;
+    // the heatmaps' views tessellate the thesis' grid) must fit in --max-memory.
+    MemoryBudget budget;
+    budget.maxBytes = maxMemory();
+    for (const std::string& name : names) {
+      budget.bytesPerTriangle =
+          std::max(budget.bytesPerTriangle,
+                   modelBytesPerTriangle(name, opt->analysis.tessellation, ModelUse::Render));
+      if (!opt->heatmaps.empty())
+        budget.bytesPerTriangle =
+            std::max(budget.bytesPerTriangle,
+                     modelBytesPerTriangle(name, Tessellation::thesis(), ModelUse::ConvertMesh));
+    }
+    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
+    const auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     std::vector<ModelMetrics> rows;
     for (const std::string& name : names) {
-      const auto start = std::chrono::steady_clock::now();
-      const std::unique_ptr<SurfaceModel> model = makeModel(name, mesh);
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      rows.push_back(analyzeModel(*model, opt->mesh, input.truth, seconds, opt->analysis));
-      if (!opt->heatmaps.empty()) {
-        for (const auto& path :
-             writeHeatmaps(*model, opt->heatmaps, input.description, opt->heatmapWidth))
-          fmt::print(stderr, "wrote {}\n", path.string());
-        for (const auto& path : writeTessellationViews(*model, opt->heatmaps))
-          fmt::print(stderr, "wrote {}\n", path.string());
-      }
+      std::function<void(const SurfaceModel&)> heatmaps;
+      if (!opt->heatmaps.empty())
+        heatmaps = [&](const SurfaceModel& model) {
+          for (const auto& path :
+               writeHeatmaps(model, opt->heatmaps, input.description, opt->heatmapWidth))
+            fmt::print(stderr, "wrote {}\n", path.string());
+          for (const auto& path : writeTessellationViews(model, opt->heatmaps))
+            fmt::print(stderr, "wrote {}\n", path.string());
+        };
+      rows.push_back(
+          analyzeNamedModel(name, mesh, opt->mesh, input.truth, opt->analysis, heatmaps));
     }
     if (opt->csv) {
-      // The JSON keys in their order are the columns, so the CSV and JSON always agree.
-      std::string header, body;
-      for (const ModelMetrics& m : rows) {
-        const nlohmann::ordered_json row = toJson(m);
-        std::string line;
-        for (const auto& [key, value] : row.items()) {
-          if (body.empty()) header += (header.empty() ? "" : ",") + key;
-          line += line.empty() ? "" : ",";
-          if (value.is_string())
-            line += value.get<std::string>();
-          else if (!value.is_null())
-            line += value.dump();
-        }
-        body += line + "\n";
-      }
-      fmt::print("{}\n{}", header, body);
+      fmt::print("{}", metricsCsv(rows));
     } else if (!opt->json) {
       fmt::print("mesh: {} ({} triangles)\n{}", opt->mesh, mesh->triangleCount(),
                  metricsTable(rows));

@@ -6,8 +6,9 @@
 #include <algorithm>
 #include <cstring>
 
-#include "quadtri/analysis/convergence.h"
 #include "commands.h"
+#include "normal_flags.h"
+#include "quadtri/analysis/convergence.h"
 #include "quadtri/io/atomic_file.h"
 #include "quadtri/math/error.h"
 #include "quadtri/surface/model.h"
@@ -31,7 +32,8 @@ std::vector<std::string> splitCommas(const std::string& list) {
 Action addConvergenceCommand(CLI::App& app) {
   struct Options {
     std::string shapes = "icosphere,ellipsoid:1,0.7,0.5,torus:1,0.35";
-    std::string models = "all", plot, csv, ordersCsv, normals = "file";
+    std::string models = "all", plot, csv, ordersCsv;
+    NormalFlags normals;
     int levels = 5, fitLevels = 3, truthLevel = 12;
     double floor = 1e-10;
     size_t maxTriangles = 0;
@@ -58,10 +60,9 @@ Action addConvergenceCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--truth-level", opt->truthLevel, "Sample lattice level per patch")
       ->capture_default_str();
-  sub->add_option("--normals", opt->normals,
-                  "Vertex normals: file (the shape's analytic ones), average or angle")
-      ->check(CLI::IsMember({"file", "average", "angle"}))
-      ->capture_default_str();
+  addNormalFlags(sub, opt->normals,
+                 "Vertex normals: file (the shape's analytic ones), average (thesis eq. 2.8) "
+                 "or angle (angle-weighted, split at --crease-angle)");
   sub->add_option("-o,--output", opt->plot, "PNG: truth_distance against triangles, log-log");
   sub->add_option("--csv", opt->csv, "CSV of every sample");
   sub->add_option("--orders-csv", opt->ordersCsv, "CSV of the observed orders");
@@ -93,7 +94,7 @@ Action addConvergenceCommand(CLI::App& app) {
     options.levels = opt->levels;
     options.truthLevel = opt->truthLevel;
     options.maxTriangles = opt->maxTriangles;
-    options.normals = parseNormalSource(opt->normals);
+    options.normals = opt->normals.options();
     if (!opt->quiet)
       options.onSample = [](const ConvergenceSample& s) {
         if (s.truthDistance)

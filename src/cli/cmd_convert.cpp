@@ -5,14 +5,18 @@
 #include <chrono>
 
 #include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/surface/convert_output.h"
+#include "quadtri/surface/corner_stats.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri::cli {
 
 Action addConvertCommand(CLI::App& app) {
   struct Options {
-    std::string mesh, model, output, tessellation = "8", normals = "file";
+    std::string mesh, model, output, tessellation = "8";
+    NormalFlags normals;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -31,19 +35,28 @@ Action addConvertCommand(CLI::App& app) {
                   "Lattice level N (N² triangles per patch) or 'thesis' (50x50 grid, 4802 "
                   "triangles per patch)")
       ->capture_default_str();
-  sub->add_option("--normals", opt->normals,
-                  "Shading normals: file (as given; computed by average when missing), average "
-                  "(thesis eq. 2.8) or angle (angle-weighted)")
-      ->check(CLI::IsMember({"file", "average", "angle"}))
-      ->capture_default_str();
-  return [opt]() {
+  addNormalFlags(sub, opt->normals,
+                 "Shading normals: file (as given; angle-weighted and split at --crease-angle "
+                 "when missing), average (thesis eq. 2.8) or angle (angle-weighted, split at "
+                 "--crease-angle)");
+  const auto maxMemory = addMaxMemoryOption(*sub);
+  return [opt, maxMemory]() {
     const Tessellation tessellation = Tessellation::parse(opt->tessellation);
-    BuiltinMesh input = loadMeshSpec(opt->mesh, parseNormalSource(opt->normals));
+    // The mesh and its model must fit in --max-memory, checked before either is built.
+    MemoryBudget budget;
+    budget.maxBytes = maxMemory();
+    budget.bytesPerTriangle = modelBytesPerTriangle(
+        opt->model, tessellation,
+        std::filesystem::path(opt->output).extension() == ".json" ? ModelUse::ConvertJson
+                                                                  : ModelUse::ConvertMesh);
+    BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<SurfaceModel> model = makeModel(opt->model, mesh);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (const std::optional<std::string> warning = conversionWarning(*model, input.description))
+      fmt::print(stderr, "warning: {}\n", *warning);
     const size_t written = writeConversion(*model, tessellation, opt->output);
     const std::string what = written > 0 ? fmt::format("{} triangles, tessellation {}", written,
                                                        tessellationName(tessellation))

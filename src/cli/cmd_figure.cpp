@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "normal_flags.h"
 #include "quadtri/io/atomic_file.h"
 #include "quadtri/io/line_plot.h"
 #include "quadtri/math/error.h"
@@ -32,6 +33,7 @@ Action addFigureCommand(CLI::App& app) {
                 scenes = "scenes/thesis", output, csv, ratioPlot;
     std::vector<std::string> defines;
     int spp = 0, res = 0, threads = 0, repeats = 1;
+    NormalFlags normals;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -55,6 +57,10 @@ Action addFigureCommand(CLI::App& app) {
   sub->add_option("--res", opt->res, "Image side in pixels (sets $res)");
   sub->add_option("-D", opt->defines, "Scene parameter name=value (overrides <default>)");
   sub->add_option("--threads", opt->threads, "Worker threads (0: all)")->capture_default_str();
+  addNormalFlags(sub, opt->normals,
+                 "Shading normals of every obj/ply shape, overriding the scenes': file, average "
+                 "(thesis eq. 2.8) or angle (angle-weighted, split at --crease-angle)",
+                 "");
   sub->add_option("--repeat", opt->repeats,
                   "Renders per cell, in rounds that rotate the models' order; the CSV and the "
                   "ratio plot take the median")
@@ -85,6 +91,8 @@ Action addFigureCommand(CLI::App& app) {
     }
     if (opt->res > 0) request.defines["res"] = std::to_string(opt->res);
     request.threads = opt->threads;
+    request.normals = opt->normals.sourceOverride();
+    request.creaseAngleDeg = opt->normals.creaseOverride();
     request.repeats = opt->repeats;
     const std::filesystem::path folder = opt->scenes;
     const std::string setup = opt->setup;

@@ -1,28 +1,36 @@
 // `quadtri render SCENE.xml -o out.exr [-o out.png]`: renders a Mitsuba-style scene.
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 
 #include "commands.h"
+#include "normal_flags.h"
+#include "quadtri/io/stop_signals.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
-#include "quadtri/scene/scene_builder.h"
-#include "quadtri/scene/scene_loader.h"
+#include "quadtri/render/render_state.h"
+#include "quadtri/scene/render_key.h"
+#include "quadtri/scene/scene_render.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri::cli {
 namespace {
 
-// Set by SIGINT: the renderer stops starting pixels and the image so far is written.
-std::atomic<bool> interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
-
-extern "C" void onInterrupt(int) {
-  interrupted.store(true);
+// What the pixels got, for the message of a stopped render: "1200 of 4800 pixels got 16
+// samples each, the other 3600 got none (black)".
+std::string samplesPerPixelReport(const RenderStats& s, size_t pixels) {
+  if (s.finishedPixels == 0)
+    return fmt::format("none of the {} pixels got a sample (all black)", pixels);
+  const std::string got =
+      s.minPixelSamples == s.maxPixelSamples
+          ? fmt::format("{} samples each", s.minPixelSamples)
+          : fmt::format("{} to {} samples ({:.1f} on average)", s.minPixelSamples,
+                        s.maxPixelSamples, s.meanSamplesPerPixel());
+  if (s.finishedPixels == pixels) return fmt::format("every pixel got {}", got);
+  return fmt::format("{} of {} pixels got {}, the other {} got none (black)", s.finishedPixels,
+                     pixels, got, pixels - s.finishedPixels);
 }
 
 }  // namespace
@@ -32,8 +40,10 @@ Action addRenderCommand(CLI::App& app) {
     std::string scene, model;
     std::vector<std::string> outputs, defines;
     int spp = 0, threads = 0;
-    double timeLimit = 0.0;
+    double timeLimit = 0.0, checkpoint = 0.0;
     std::optional<uint64_t> seed;
+    NormalFlags normals;
+    std::string resume;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -51,8 +61,23 @@ Action addRenderCommand(CLI::App& app) {
   CLI::Option* timeOption = sub->add_option("--time", opt->timeLimit,
                                             "Time budget in seconds; unfinished pixels stay black");
   sub->add_option("--seed", opt->seed, "Sampler seed (overrides the sampler)");
-  return [opt, sppOption, timeOption]() {
+  addNormalFlags(sub, opt->normals,
+                 "Shading normals of every obj/ply shape, overriding the scene's: file (as "
+                 "given; angle-weighted and split at --crease-angle when missing), average "
+                 "(thesis eq. 2.8) or angle (angle-weighted, split at --crease-angle)",
+                 "");
+  const auto maxMemory = addMaxMemoryOption(*sub);
+  CLI::Option* checkpointOption = sub->add_option(
+      "--checkpoint", opt->checkpoint,
+      "Every SECONDS, save the finished pixels to FIRST_OUTPUT.state (and when stopped early), "
+      "for --resume; removed once the image is complete");
+  sub->add_option("--resume", opt->resume,
+                  "Resume the render saved in STATE (by --checkpoint): only the pixels it lacks "
+                  "are rendered; refused unless the scene, options, seed and version match")
+      ->check(CLI::ExistingFile);
+  return [opt, sppOption, timeOption, checkpointOption, maxMemory]() {
     const bool sppGiven = sppOption->count() > 0, timeGiven = timeOption->count() > 0;
+    const bool checkpointGiven = checkpointOption->count() > 0;
     SceneDefines defines;
     for (const std::string& d : opt->defines) {
       const size_t eq = d.find('=');
@@ -67,35 +92,85 @@ Action addRenderCommand(CLI::App& app) {
     if (opt->threads < 0) fail("--threads {}: expected 0 (all) or a positive count", opt->threads);
     if (timeGiven && !(opt->timeLimit > 0.0))
       fail("--time {}: expected a positive number of seconds", opt->timeLimit);
+    if (checkpointGiven && !(opt->checkpoint > 0.0))
+      fail("--checkpoint {}: expected a positive number of seconds", opt->checkpoint);
+    const uint64_t memoryLimit = maxMemory();
 
-    SceneDescription description = loadSceneDescription(opt->scene, defines);
-    for (const auto& [name, value] : defines)
-      if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
-          description.defaultNames.end())
-        fmt::print(stderr,
-                   "warning: -D {}={}: {} has no <default name=\"{}\">; the value reaches only "
-                   "a ${} in the file\n",
-                   name, value, opt->scene, name, name);
-    if (sppGiven) overrideSamplesPerPixel(description, opt->spp);
-    BuiltScene built =
-        buildScene(description, opt->model.empty() ? std::nullopt : std::optional(opt->model));
-    RenderOptions options = built.options;
-    if (sppGiven) options.samplesPerPixel = opt->spp;
-    if (opt->seed) options.seed = *opt->seed;
-    options.threads = opt->threads;
-    options.timeLimitSeconds = opt->timeLimit;
-    options.cancel = &interrupted;
+    // From here SIGINT, SIGTERM and SIGHUP stop the render and the pixels so far are written;
+    // a second one ends the process at once, leaving no temporary file.
+    const StopSignals signals;
+
+    SceneRenderRequest request;
+    request.defines = defines;
+    if (!opt->model.empty()) request.model = opt->model;
+    if (sppGiven) request.samplesPerPixel = opt->spp;
+    request.seed = opt->seed;
+    request.threads = opt->threads;
+    request.timeLimitSeconds = opt->timeLimit;
+    request.normals = opt->normals.sourceOverride();
+    request.creaseAngleDegrees = opt->normals.creaseOverride();
+    request.maxMemoryBytes = memoryLimit;
+    request.warn = [](const std::string& message) { fmt::print(stderr, "warning: {}\n", message); };
+    request.note = [](const std::string& message) { fmt::print(stderr, "{}\n", message); };
+    PreparedRender prepared = prepareSceneRender(opt->scene, request);
+    const SceneDescription& description = prepared.description;
+    const BuiltScene& built = prepared.built;
+    RenderOptions& options = prepared.options;
+    options.cancel = &StopSignals::stopRequested();
     options.progress = isatty(STDERR_FILENO) != 0;
+    const PerspectiveCamera& camera = built.scene->camera();
 
-    const auto previous = std::signal(SIGINT, onInterrupt);
+    // Checkpoints and resuming: a state is only resumed by the render that saved it.
+    const uint64_t key = renderKey(description, options,
+                                   opt->model.empty() ? std::nullopt : std::optional(opt->model));
+    std::optional<RenderState> resumed;
+    if (!opt->resume.empty()) {
+      resumed = loadRenderState(opt->resume);
+      checkResumable(*resumed, key, camera.width(), camera.height(), opt->resume);
+      options.resume = &*resumed;
+      fmt::print(stderr, "resuming {}: {} of {} pixels already rendered\n", opt->resume,
+                 resumed->finishedPixels(), resumed->samples.size());
+    }
+    const std::filesystem::path statePath = opt->outputs.front() + ".state";
+    if (checkpointGiven) {
+      options.checkpointSeconds = opt->checkpoint;
+      options.stateKey = key;
+      options.checkpoint = [statePath](const RenderState& state) {
+        saveRenderState(state, statePath);
+      };
+    }
+
+    if (const int sig = StopSignals::signalNumber()) {
+      fmt::print(stderr, "quadtri: stopped by {} before rendering; nothing written\n",
+                 StopSignals::signalName(sig));
+      return 128 + sig;
+    }
+    fmt::print(stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
+               built.integrator->adaptive()
+                   ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
+                   : std::to_string(options.samplesPerPixel),
+               opt->threads > 0 ? fmt::format(", {} threads", opt->threads) : std::string());
     const RenderResult result = render(*built.scene, *built.integrator, options);
-    std::signal(SIGINT, previous);
-
+    if (!result.checkpointError.empty())
+      fmt::print(stderr, "warning: checkpoints stopped: {}\n", result.checkpointError);
+    // An image that is not complete leaves its state behind to resume (saved before the
+    // images, so a second signal while they are written keeps it); a complete one removes the
+    // checkpoint once the images are written.
+    std::string saved;
+    if (checkpointGiven && result.stats.unfinishedPixels > 0) {
+      saveRenderState(result.state(key), statePath);
+      saved = fmt::format("; saved {}, resume with --resume {}", statePath.string(),
+                          statePath.string());
+    }
     for (const std::string& out : opt->outputs) {
       const size_t replaced = writeImage(result.image, out);
       if (replaced)
         fmt::print(stderr, "warning: {}: {} non-finite values written as 0\n", out, replaced);
       fmt::print("wrote {}\n", out);
+    }
+    if (checkpointGiven && result.stats.unfinishedPixels == 0) {
+      std::error_code ignored;
+      std::filesystem::remove(statePath, ignored);
     }
     const RenderStats& s = result.stats;
     fmt::print("integrator      {}\n", built.integrator->toString());
@@ -114,11 +189,17 @@ Action addRenderCommand(CLI::App& app) {
                double(built.scene->geometryBytes()) / (1024.0 * 1024.0));
     if (s.nonFiniteSamples)
       fmt::print(stderr, "warning: {} NaN/Inf samples dropped\n", s.nonFiniteSamples);
+    if (const int sig = StopSignals::signalNumber()) {
+      fmt::print(stderr, "quadtri: stopped by {}{}: {}; wrote {}{}\n", StopSignals::signalName(sig),
+                 s.stopped ? "" : " after the render",
+                 samplesPerPixelReport(s, result.image.pixels.size()),
+                 fmt::join(opt->outputs, ", "), saved);
+      return 128 + sig;
+    }
     if (s.unfinishedPixels)
-      fmt::print(stderr, "warning: {} of {} pixels not rendered ({}), left black\n",
-                 s.unfinishedPixels, result.image.pixels.size(),
-                 interrupted.load() ? "interrupted" : "time limit");
-    return interrupted.load() ? 130 : 0;
+      fmt::print(stderr, "warning: {} of {} pixels not rendered (time limit), left black{}\n",
+                 s.unfinishedPixels, result.image.pixels.size(), saved);
+    return 0;
   };
 }
 

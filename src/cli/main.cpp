@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "quadtri/io/stop_signals.h"
 #include "quadtri/math/error.h"
 
 int main(int argc, char** argv) {
@@ -22,6 +23,10 @@ int main(int argc, char** argv) {
   add(&quadtri::cli::addFigureCommand);
   add(&quadtri::cli::addMeshCommand);
   add(&quadtri::cli::addRenderCommand);
+  add(&quadtri::cli::addStudyCommand);
+  // A signal ends any command at once without leaving a temporary file behind; `render` takes
+  // SIGINT, SIGTERM and SIGHUP over while it renders, to write what it has first.
+  quadtri::exitCleanlyOnStopSignals();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -73,8 +73,7 @@ void Canvas::text(int x, int y, const std::string& s, int size, const Rgb& c, bo
       centered ? OIIO::ImageBufAlgo::TextAlignY::Center : OIIO::ImageBufAlgo::TextAlignY::Baseline);
   if (!ok)
     fail("cannot draw text with the font {} ({}): install fonts-dejavu-core or set QUADTRI_FONT",
-         labelFontPath(),
-         impl_->buf.geterror());
+         labelFontPath(), impl_->buf.geterror());
 }
 
 void Canvas::paste(const Canvas& other, int x, int y) {

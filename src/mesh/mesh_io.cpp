@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "quadtri/io/atomic_file.h"
+#include "quadtri/io/memory_limit.h"
 #include "quadtri/math/error.h"
 
 namespace quadtri {
@@ -30,118 +31,19 @@ std::string lowerExtension(const std::filesystem::path& p) {
   return ext;
 }
 
-// Splits a line into whitespace-separated words.
-std::vector<std::string_view> splitWords(std::string_view line) {
-  std::vector<std::string_view> words;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    const size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > start) words.push_back(line.substr(start, i - start));
-  }
-  return words;
-}
-
-bool parseFinite(std::string_view word) {
-  if (word.size() > 1 && word[0] == '+') word.remove_prefix(1);  // from_chars takes no '+'
-  double value = 0.0;
-  const char* end = word.data() + word.size();
-  auto [ptr, ec] = std::from_chars(word.data(), end, value);
-  return ec == std::errc() && ptr == end && std::isfinite(value);
-}
-
-// Checks one face-vertex index against the `count` elements defined above it; returns an error
-// text (what was wrong, expected what) or "" when the index is valid.
-std::string checkObjIndex(std::string_view text, long count, const char* what, const char* plural) {
-  long index = 0;
-  const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, index);
-  const std::string range = count == 0 ? fmt::format("a {} defined above (none yet)", what)
-                                       : fmt::format(
-                                             "1..{} or -{}..-1 (OBJ refers only to {} "
-                                             "defined above)",
-                                             count, count, plural);
-  if (ec != std::errc() || ptr != end)
-    return fmt::format("{} index '{}' is not an integer, expected {}", what, text, range);
-  const long resolved = index > 0 ? index : count + index + 1;
-  if (index == 0 || resolved < 1 || resolved > count)
-    return fmt::format("{} index {} is out of range, expected {}", what, index, range);
-  return {};
-}
-
-// Our own checks on an OBJ file before Assimp reads it, so that an error names its line:
-// Assimp accepts or misreports some bad input (a coordinate that is no number, a short face).
-void validateObj(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("{}: cannot open file", path.string());
-  const std::string name = path.string();
-  long counts[3] = {0, 0, 0};  // v, vt, vn defined so far
-  std::string line;
-  for (long lineNo = 1; std::getline(in, line); ++lineNo) {
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const std::vector<std::string_view> w = splitWords(line);
-    if (w.empty()) continue;
-    const std::string_view key = w[0];
-    if (key == "v" || key == "vn" || key == "vt") {
-      const size_t n = w.size() - 1;
-      // v: x y z [w] or x y z r g b (vertex colours); vt: u [v [w]]; vn: x y z.
-      bool countOk = n >= 1 && n <= 3;
-      const char* expected = "1 to 3 numbers";
-      if (key == "v") {
-        countOk = n == 3 || n == 4 || n == 6;
-        expected = "x y z, x y z w or x y z r g b";
-      } else if (key == "vn") {
-        countOk = n == 3;
-        expected = "3 numbers";
-      }
-      if (!countOk)
-        fail("{}:{}: '{}' line has {} values, expected {}", name, lineNo, key, n, expected);
-      for (size_t i = 1; i < w.size(); ++i)
-        if (!parseFinite(w[i]))
-          fail("{}:{}: '{}' value '{}' is not a finite number, expected {}", name, lineNo, key,
-               w[i], expected);
-      ++counts[key == "v" ? 0 : key == "vt" ? 1 : 2];
-    } else if (key == "f") {
-      if (w.size() < 4)
-        fail("{}:{}: face has {} vertices, expected at least 3", name, lineNo, w.size() - 1);
-      for (size_t i = 1; i < w.size(); ++i) {
-        const std::string_view vertex = w[i];
-        // i, i/j, i//k or i/j/k: the first part is required, empty parts only as in i//k.
-        std::vector<std::string_view> parts;
-        for (size_t start = 0;;) {
-          const size_t slash = vertex.find('/', start);
-          parts.push_back(vertex.substr(start, slash - std::min(slash, start)));
-          if (slash == std::string_view::npos) break;
-          start = slash + 1;
-        }
-        const bool shapeOk = parts.size() <= 3 && !parts[0].empty() && !parts.back().empty() &&
-                             !(parts.size() == 2 && parts[1].empty());
-        if (!shapeOk)
-          fail("{}:{}: face vertex '{}' is malformed, expected i, i/j, i//k or i/j/k", name, lineNo,
-               vertex);
-        static constexpr const char* kinds[3] = {"vertex", "texcoord", "normal"};
-        static constexpr const char* plurals[3] = {"vertices", "texcoords", "normals"};
-        for (size_t k = 0; k < parts.size(); ++k) {
-          if (parts[k].empty()) continue;  // the texcoord of i//k
-          const std::string error = checkObjIndex(parts[k], counts[k], kinds[k], plurals[k]);
-          if (!error.empty()) fail("{}:{}: face vertex '{}': {}", name, lineNo, vertex, error);
-        }
-      }
-    }
-    // Every other keyword (o, g, s, usemtl, mtllib, l, p, ...) is left to Assimp.
-  }
-}
-
 }  // namespace
 
-TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
+TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals,
+                      MemoryBudget* budget) {
   const std::string name = path.string();
   if (!std::filesystem::exists(path)) fail("{}: no such file", name);
   const std::string ext = lowerExtension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
     fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
-  if (ext == ".obj") validateObj(path);
+  // The header's counts must fit in the file and the memory they need in the budget before
+  // Assimp allocates for them.
+  const MeshFileInfo info = inspectMeshFile(path);
+  if (budget) chargeMeshFile(*budget, info, path);
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
@@ -193,8 +95,7 @@ TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source) {
     }
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
-  if (!allHaveNormals || source != NormalSource::File)
-    computeVertexNormals(mesh, source == NormalSource::File ? NormalSource::Average : source);
+  applyNormals(mesh, normals);
   mesh.validate(name);
   return mesh;
 }
@@ -270,10 +171,11 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
 
 namespace quadtri {
 
-BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source) {
+BuiltinMesh loadMeshSpec(const std::string& spec, const NormalOptions& normals,
+                         MemoryBudget* budget) {
   if (std::filesystem::exists(spec)) {
     BuiltinMesh b;
-    b.mesh = loadMesh(spec, source);
+    b.mesh = loadMesh(spec, normals, budget);
     b.description = std::filesystem::path(spec).filename().string();
     return b;
   }
@@ -282,7 +184,11 @@ BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source) {
     fail("{}: no such file, and not a built-in shape (expected a mesh file or one of {})", spec,
          fmt::join(builtinShapeNames(), ", "));
   }
-  if (source != NormalSource::File) computeVertexNormals(b->mesh, source);
+  if (budget)
+    chargeMemory(*budget, uint64_t(b->mesh.triangleCount()) * budget->bytesPerTriangle, spec,
+                 fmt::format("building {} per triangle of its {} triangles",
+                             formatBytes(budget->bytesPerTriangle), b->mesh.triangleCount()));
+  applyNormals(b->mesh, normals);  // File keeps the shape's analytic normals
   return std::move(*b);
 }
 

@@ -2,7 +2,9 @@
 
 #include <fmt/ranges.h>
 
+#include <array>
 #include <charconv>
+#include <cmath>
 #include <map>
 
 #include "quadtri/math/error.h"
@@ -178,6 +180,83 @@ TriangleMesh uvSphereMesh(int seg, int rings) {
   return m.mesh;
 }
 
+// The box [−1, 1]³: each face a grid of n×n squares, each cut along the same diagonal into two
+// triangles, wound outwards. Grid coordinates are −1 + 2i/n on every face, so the faces' shared
+// vertices weld by equality. Split normals: each face indexes its own normal.
+TriangleMesh cubeMesh(int n) {
+  TriangleMesh mesh;
+  std::map<std::array<int, 3>, uint32_t> ids;
+  auto coordinate = [n](int i) { return -1.0 + 2.0 * i / n; };
+  auto vertex = [&](const std::array<int, 3>& g) {
+    auto [it, inserted] = ids.try_emplace(g, uint32_t(mesh.positions.size()));
+    if (inserted) mesh.positions.emplace_back(coordinate(g[0]), coordinate(g[1]), coordinate(g[2]));
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int side : {-1, 1}) {
+      // Tangent axes with u × v = side · e_axis.
+      int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      if (side < 0) std::swap(u, v);
+      Vec3 normal = Vec3::Zero();
+      normal[axis] = side;
+      const uint32_t ni = uint32_t(mesh.normals.size());
+      mesh.normals.push_back(normal);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> g{};
+            g[axis] = side < 0 ? 0 : n;
+            g[u] = i + di;
+            g[v] = j + dj;
+            return vertex(g);
+          };
+          const uint32_t a = at(0, 0), b = at(1, 0), c = at(1, 1), d = at(0, 1);
+          mesh.triangles.push_back({a, b, c});
+          mesh.triangles.push_back({a, c, d});
+          mesh.normalIndices.push_back({ni, ni, ni});
+          mesh.normalIndices.push_back({ni, ni, ni});
+        }
+    }
+  return mesh;
+}
+
+// The capped cylinder of radius 1 around the z axis, z from −1 to 1: `seg` vertices around,
+// `rings` quads along the side (each cut into two triangles), each cap a fan of `seg` triangles
+// around its centre. Split normals: the side's are radial, each cap has its own axial one.
+TriangleMesh cylinderMesh(int seg, int rings) {
+  TriangleMesh mesh;
+  for (int j = 0; j <= rings; ++j)
+    for (int i = 0; i < seg; ++i) {
+      const double phi = 2 * kPi * i / seg;
+      mesh.positions.emplace_back(std::cos(phi), std::sin(phi), -1.0 + 2.0 * j / rings);
+    }
+  for (int i = 0; i < seg; ++i)
+    mesh.normals.push_back(Vec3(mesh.positions[i].x(), mesh.positions[i].y(), 0.0).normalized());
+  auto id = [&](int j, int i) { return uint32_t(j * seg + (i % seg)); };
+  for (int j = 0; j < rings; ++j)
+    for (int i = 0; i < seg; ++i) {
+      const uint32_t a = id(j, i), b = id(j, i + 1), c = id(j + 1, i + 1), d = id(j + 1, i);
+      const uint32_t na = uint32_t(i), nb = uint32_t((i + 1) % seg);
+      mesh.triangles.push_back({a, b, c});
+      mesh.normalIndices.push_back({na, nb, nb});
+      mesh.triangles.push_back({a, c, d});
+      mesh.normalIndices.push_back({na, nb, na});
+    }
+  const uint32_t bottom = uint32_t(mesh.positions.size()), top = bottom + 1;
+  mesh.positions.emplace_back(0.0, 0.0, -1.0);
+  mesh.positions.emplace_back(0.0, 0.0, 1.0);
+  const uint32_t nDown = uint32_t(mesh.normals.size()), nUp = nDown + 1;
+  mesh.normals.emplace_back(0.0, 0.0, -1.0);
+  mesh.normals.emplace_back(0.0, 0.0, 1.0);
+  for (int i = 0; i < seg; ++i) {
+    mesh.triangles.push_back({bottom, id(0, i + 1), id(0, i)});
+    mesh.normalIndices.push_back({nDown, nDown, nDown});
+    mesh.triangles.push_back({top, id(rings, i), id(rings, i + 1)});
+    mesh.normalIndices.push_back({nUp, nUp, nUp});
+  }
+  return mesh;
+}
+
 std::vector<double> parseNumbers(std::string_view spec, std::string_view args) {
   std::vector<double> out;
   while (!args.empty()) {
@@ -234,6 +313,16 @@ double AnalyticSurface::distance(const Vec3& p) const {
       const double g = f.gradient(p).norm();
       return g > 0 ? std::abs(f.value(p)) / g : size();
     }
+    case Kind::Box: {
+      const Vec3 q = p.cwiseAbs() - Vec3(a, b, c);
+      if (q.maxCoeff() <= 0.0) return -q.maxCoeff();
+      return q.cwiseMax(0.0).norm();
+    }
+    case Kind::Cylinder: {
+      const double dr = std::hypot(p.x(), p.y()) - a, dz = std::abs(p.z()) - b;
+      if (dr <= 0.0 && dz <= 0.0) return std::min(-dr, -dz);
+      return std::hypot(std::max(dr, 0.0), std::max(dz, 0.0));
+    }
   }
   return 0.0;
 }
@@ -257,6 +346,24 @@ Vec3 AnalyticSurface::normal(const Vec3& p) const {
         return safeNormalized(f.gradient(p));
       }
     }
+    case Kind::Box: {
+      const Vec3 q = p.cwiseAbs() - Vec3(a, b, c);
+      const Vec3 sign(p.x() < 0 ? -1.0 : 1.0, p.y() < 0 ? -1.0 : 1.0, p.z() < 0 ? -1.0 : 1.0);
+      if (q.maxCoeff() > 0.0) return safeNormalized(q.cwiseMax(0.0).cwiseProduct(sign));
+      int axis = 0;
+      q.maxCoeff(&axis);
+      Vec3 n = Vec3::Zero();
+      n[axis] = sign[axis];
+      return n;
+    }
+    case Kind::Cylinder: {
+      const double rxy = std::hypot(p.x(), p.y());
+      const double dr = rxy - a, dz = std::abs(p.z()) - b;
+      const Vec3 radial = rxy > 0 ? Vec3(p.x() / rxy, p.y() / rxy, 0.0) : Vec3(1, 0, 0);
+      const Vec3 axial(0.0, 0.0, p.z() < 0 ? -1.0 : 1.0);
+      if (dr > 0.0 && dz > 0.0) return safeNormalized(dr * radial + dz * axial);
+      return dr >= dz ? radial : axial;
+    }
   }
   return Vec3(0, 0, 1);
 }
@@ -271,14 +378,18 @@ double AnalyticSurface::size() const {
       return a + b;
     case Kind::Genus2:
       return genus2HalfLength(a);
+    case Kind::Box:
+      return std::max({a, b, c});
+    case Kind::Cylinder:
+      return std::max(a, b);
   }
   return 1.0;
 }
 
 const std::vector<std::string>& builtinShapeNames() {
-  static const std::vector<std::string> names = {"triangle",  "tetrahedron", "icosahedron",
-                                                 "icosphere", "uv-sphere",   "ellipsoid",
-                                                 "torus",     "genus2"};
+  static const std::vector<std::string> names = {
+      "triangle",  "tetrahedron", "icosahedron", "icosphere", "uv-sphere",
+      "ellipsoid", "torus",       "genus2",      "cube",      "cylinder"};
   return names;
 }
 
@@ -342,6 +453,21 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
     b.mesh = genus2Mesh(params.cells);
     b.truth = AnalyticSurface{AnalyticSurface::Kind::Genus2, kGenus2Tube, 0, 0};
     b.description = fmt::format("genus-2 pretzel, {} cells", params.cells);
+  } else if (name == "cube" || name == "cylinder") {
+    const bool cube = name == "cube";
+    if (cube && (params.divisions < 1 || params.divisions > 1024))
+      fail("cube divisions {} is out of range: expected 1 to 1024", params.divisions);
+    if (!cube && (params.segments < 3 || params.rings < 1))
+      fail("cylinder needs at least 3 segments and 1 ring");
+    b.mesh = cube ? cubeMesh(params.divisions) : cylinderMesh(params.segments, params.rings);
+    b.truth = AnalyticSurface{cube ? AnalyticSurface::Kind::Box : AnalyticSurface::Kind::Cylinder,
+                              1, 1, 1};
+    b.description = cube ? fmt::format("cube, {} divisions", params.divisions)
+                         : fmt::format("capped cylinder {}x{}", params.segments, params.rings);
+    // The analytic normals are the split ones built with the mesh (AnalyticSurface::normal
+    // cannot tell which face a crease vertex belongs to).
+    if (!params.analyticNormals) computeVertexNormals(b.mesh, NormalSource::Average);
+    return b;
   } else {
     fail("unknown built-in shape '{}': expected one of {}", name,
          fmt::join(builtinShapeNames(), ", "));
@@ -389,6 +515,13 @@ std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
   } else if (name == "genus2") {
     need(0, 1);
     if (!v.empty()) p.cells = int(v[0]);
+  } else if (name == "cube") {
+    need(0, 1);
+    if (!v.empty()) p.divisions = int(v[0]);
+  } else if (name == "cylinder") {
+    need(0, 2);
+    if (v.size() > 0) p.segments = int(v[0]);
+    if (v.size() > 1) p.rings = int(v[1]);
   } else {
     need(0, 0);
   }

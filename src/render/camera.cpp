@@ -43,6 +43,14 @@ PerspectiveCamera::PerspectiveCamera(const Params& params) : params_(params) {
   if (!params.cameraToWorld.allFinite() ||
       std::abs(params.cameraToWorld.topLeftCorner<3, 3>().determinant()) == 0.0)
     fail("camera to_world: expected a finite, invertible matrix");
+  cropWidth_ = params.cropWidth > 0 ? params.cropWidth : params.width - params.cropX;
+  cropHeight_ = params.cropHeight > 0 ? params.cropHeight : params.height - params.cropY;
+  if (params.cropX < 0 || params.cropY < 0 || cropWidth_ <= 0 || cropHeight_ <= 0 ||
+      params.cropX + cropWidth_ > params.width || params.cropY + cropHeight_ > params.height)
+    fail("crop window {}x{} at ({}, {}): expected a non-empty window inside the {}x{} film",
+         cropWidth_, cropHeight_, params.cropX, params.cropY, params.width, params.height);
+  if (!params.principalPointOffset.allFinite())
+    fail("principal point offset: expected finite numbers");
   const double aspect = double(params.width) / double(params.height);
   fovX_ = horizontalFov(params.fovDegrees, params.fovAxis, aspect);
   if (!(fovX_ > 0.0 && fovX_ < 180.0))
@@ -52,9 +60,12 @@ PerspectiveCamera::PerspectiveCamera(const Params& params) : params_(params) {
 }
 
 Ray PerspectiveCamera::generateRay(const Vec2& film) const {
-  const Vec3 local = Vec3(tanHalfX_ * (1.0 - 2.0 * film.x() / params_.width),
-                          tanHalfY_ * (1.0 - 2.0 * film.y() / params_.height), 1.0)
-                         .normalized();
+  // Film position relative to the principal point, as a fraction of the film: 0.5 at the
+  // principal point, which is the film's centre unless principal_point_offset moves it.
+  const double fx = film.x() / params_.width - params_.principalPointOffset.x();
+  const double fy = film.y() / params_.height - params_.principalPointOffset.y();
+  const Vec3 local =
+      Vec3(tanHalfX_ * (1.0 - 2.0 * fx), tanHalfY_ * (1.0 - 2.0 * fy), 1.0).normalized();
   const Mat4& m = params_.cameraToWorld;
   Ray ray;
   ray.direction = safeNormalized(m.topLeftCorner<3, 3>() * local);

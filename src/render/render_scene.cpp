@@ -1,7 +1,7 @@
 #include "quadtri/render/render_scene.h"
 
-#include "quadtri/math/error.h"
 #include "quadtri/geometry/model_geometry.h"
+#include "quadtri/math/error.h"
 #include "quadtri/render/emitter/constant_emitter.h"
 #include "quadtri/render/emitter/mesh_area_emitter.h"
 #include "quadtri/render/emitter/point_emitter.h"
@@ -33,9 +33,9 @@ uint32_t RenderScene::addRecord(GeometryRecord record, uint32_t geometryId) {
   return geometryId;
 }
 
-void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
-                           const Tessellation& tessellation, std::shared_ptr<const Bsdf> bsdf,
-                           const std::optional<Color>& areaRadiance, const std::string& name) {
+uint32_t RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
+                               const Tessellation& tessellation, std::shared_ptr<const Bsdf> bsdf,
+                               const std::optional<Color>& areaRadiance, const std::string& name) {
   if (committed_) fail("{}: geometry added after the scene was committed", name);
   GeometryRecord record;
   record.bsdf = std::move(bsdf);
@@ -49,8 +49,7 @@ void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
     record.patches = geometry.patches;
     for (const QuadricPatch& patch : *geometry.patches) bounds_.extend(patch.bounds);
     record.owner = model;
-    addRecord(std::move(record), addModelGeometry(accel_, geometry));
-    return;
+    return addRecord(std::move(record), addModelGeometry(accel_, geometry));
   }
   record.normals = geometry.shadingNormals ? GeometryRecord::Normals::Interpolated
                                            : GeometryRecord::Normals::Geometric;
@@ -62,7 +61,7 @@ void RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
     record.emitter = emitters_.back().get();
   }
   const uint32_t id = accel_.addTriangles(*record.mesh);
-  addRecord(std::move(record), id);
+  return addRecord(std::move(record), id);
 }
 
 void RenderScene::addSphere(const Vec3& center, double radius, const Mat4& toWorld,
@@ -151,6 +150,8 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
   SurfaceInteraction si;
   si.t = hit.t;
   si.geometry = &record;
+  si.geometryId = hit.geometry;
+  si.primitive = hit.primitive;
   if (record.patches) {
     const QuadricPatch& patch = (*record.patches)[hit.primitive];
     // Embree hands back t as a float: one Newton step along the gradient puts the point back

@@ -5,9 +5,12 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "quadtri/math/error.h"
 #include "quadtri/render/render_scene.h"
@@ -36,7 +39,10 @@ struct PixelResult {
 PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
                         const RenderOptions& options, int x, int y) {
   const PerspectiveCamera& camera = scene.camera();
-  const uint64_t index = uint64_t(y) * uint64_t(camera.width()) + uint64_t(x);
+  // The pixel's index on the whole film, so that a crop window draws the same samples as the
+  // same pixels of the full render.
+  const uint64_t index =
+      uint64_t(y + camera.cropY()) * uint64_t(camera.filmWidth()) + uint64_t(x + camera.cropX());
   Pcg32 rng(mix64(options.seed ^ mix64(index)), mix64(index) ^ options.seed);
   const AdaptiveSampling* adaptive = integrator.adaptive();
   const uint64_t target =
@@ -44,7 +50,7 @@ PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
   PixelResult r;
   Color sum = Color::Zero();
   double lumSum = 0.0, lumSquares = 0.0;
-  const Vec2 centre(x + 0.5, y + 0.5);
+  const Vec2 centre(x + camera.cropX() + 0.5, y + camera.cropY() + 0.5);
   while (r.samples < target) {
     uint64_t batch = target - r.samples;
     if (adaptive)
@@ -115,6 +121,23 @@ class ProgressBar {
 
 }  // namespace
 
+uint64_t renderImageBytes(int width, int height) {
+  constexpr uint64_t kPerPixel = sizeof(Color) + 3 * sizeof(float) + 3 + 8;
+  return uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0)) * kPerPixel;
+}
+
+RenderState RenderResult::state(uint64_t key) const {
+  RenderState s;
+  s.key = key;
+  s.width = image.width;
+  s.height = image.height;
+  s.samples = pixelSamples;
+  s.pixels = image.pixels;
+  for (size_t i = 0; i < s.pixels.size(); ++i)
+    if (s.samples[i] == 0) s.pixels[i] = Color::Zero();
+  return s;
+}
+
 double RenderStats::meanSamplesPerPixel() const {
   return finishedPixels == 0 ? 0.0 : double(samples) / double(finishedPixels);
 }
@@ -130,12 +153,29 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
   const int tilesX = (width + kTileSize - 1) / kTileSize,
             tilesY = (height + kTileSize - 1) / kTileSize;
   const size_t tileCount = size_t(tilesX) * size_t(tilesY);
+  const size_t pixelCount = size_t(width) * size_t(height);
+  const RenderState* resume = options.resume;
+  if (resume) {
+    if (resume->width != width || resume->height != height ||
+        resume->samples.size() != pixelCount || resume->pixels.size() != pixelCount)
+      fail("the render state to resume is {}x{}, the camera's image {}x{}", resume->width,
+           resume->height, width, height);
+    if (!integrator.adaptive())
+      for (size_t i = 0; i < pixelCount; ++i)
+        if (resume->samples[i] != 0 && resume->samples[i] != uint32_t(options.samplesPerPixel))
+          fail("the render state to resume has {} samples in pixel {}, expected {} (or 0)",
+               resume->samples[i], i, options.samplesPerPixel);
+  }
 
   RenderResult result;
   result.image = Image(width, height);
+  // Per pixel: the samples it got, stored (release) after its value, so that a checkpoint
+  // reading a count (acquire) reads a final value.
+  std::vector<std::atomic<uint32_t>> counts(pixelCount);
   std::atomic<uint64_t> samples{0}, rays{0};
-  std::atomic<size_t> nonFinite{0}, finishedPixels{0}, unfinished{0};
+  std::atomic<size_t> nonFinite{0}, finishedPixels{0}, unfinished{0}, resumed{0};
   std::atomic<bool> stopped{false};
+  std::atomic<uint64_t> minSamples{std::numeric_limits<uint64_t>::max()}, maxSamples{0};
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
                                     std::chrono::duration<double>(options.timeLimitSeconds));
@@ -148,6 +188,52 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
     return stop;
   };
 
+  // Checkpoints: a thread that wakes every checkpointSeconds and hands the finished pixels to
+  // the callback, until the render is done (the guard also ends it when rendering throws).
+  struct Checkpointer {
+    std::mutex mutex;
+    std::condition_variable wake;
+    bool done = false;
+    std::thread thread;
+    ~Checkpointer() {
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        done = true;
+      }
+      wake.notify_all();
+      if (thread.joinable()) thread.join();
+    }
+  } checkpointer;
+  size_t checkpoints = 0;
+  if (options.checkpoint && options.checkpointSeconds > 0.0) {
+    const auto period = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(options.checkpointSeconds));
+    checkpointer.thread = std::thread([&, period] {
+      std::unique_lock<std::mutex> lock(checkpointer.mutex);
+      while (!checkpointer.wake.wait_for(lock, period, [&] { return checkpointer.done; })) {
+        lock.unlock();
+        RenderState state;
+        state.key = options.stateKey;
+        state.width = width;
+        state.height = height;
+        state.samples.resize(pixelCount);
+        state.pixels.assign(pixelCount, Color::Zero());
+        for (size_t i = 0; i < pixelCount; ++i) {
+          state.samples[i] = counts[i].load(std::memory_order_acquire);
+          if (state.samples[i] > 0) state.pixels[i] = result.image.pixels[i];
+        }
+        try {
+          options.checkpoint(state);
+          ++checkpoints;
+        } catch (const std::exception& e) {
+          result.checkpointError = e.what();
+          return;
+        }
+        lock.lock();
+      }
+    });
+  }
+
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(
@@ -158,31 +244,60 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
             const int x0 = int(tile % size_t(tilesX)) * kTileSize,
                       y0 = int(tile / size_t(tilesX)) * kTileSize;
             const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
-            uint64_t tileSamples = 0, tileRays = 0;
-            size_t tileNonFinite = 0, tileDone = 0, tileSkipped = 0;
+            uint64_t tileSamples = 0, tileRays = 0, tileMin = std::numeric_limits<uint64_t>::max(),
+                     tileMax = 0;
+            size_t tileNonFinite = 0, tileDone = 0, tileSkipped = 0, tileResumed = 0;
             for (int y = y0; y < y1; ++y)
               for (int x = x0; x < x1; ++x) {
+                const size_t index = size_t(y) * size_t(width) + size_t(x);
+                if (resume && resume->samples[index] > 0) {
+                  const uint32_t n = resume->samples[index];
+                  result.image.at(x, y) = resume->pixels[index];
+                  counts[index].store(n, std::memory_order_release);
+                  tileSamples += n;
+                  tileMin = std::min<uint64_t>(tileMin, n);
+                  tileMax = std::max<uint64_t>(tileMax, n);
+                  ++tileResumed;
+                  ++tileDone;
+                  continue;
+                }
                 if (shouldStop()) {
                   ++tileSkipped;
                   continue;
                 }
                 const PixelResult p = renderPixel(scene, integrator, options, x, y);
                 result.image.at(x, y) = p.value;
+                counts[index].store(uint32_t(p.samples), std::memory_order_release);
                 tileSamples += p.samples;
                 tileRays += p.rays;
                 tileNonFinite += p.nonFinite;
+                tileMin = std::min(tileMin, p.samples);
+                tileMax = std::max(tileMax, p.samples);
                 ++tileDone;
               }
+            for (uint64_t seen = minSamples.load(); tileMin < seen;)
+              if (minSamples.compare_exchange_weak(seen, tileMin)) break;
+            for (uint64_t seen = maxSamples.load(); tileMax > seen;)
+              if (maxSamples.compare_exchange_weak(seen, tileMax)) break;
             samples += tileSamples;
             rays += tileRays;
             nonFinite += tileNonFinite;
             unfinished += tileSkipped;
+            resumed += tileResumed;
             progress.update(finishedPixels += tileDone);
           }
         },
         tbb::simple_partitioner());
   });
+  {
+    std::lock_guard<std::mutex> lock(checkpointer.mutex);
+    checkpointer.done = true;
+  }
+  checkpointer.wake.notify_all();
+  if (checkpointer.thread.joinable()) checkpointer.thread.join();
   progress.finish(finishedPixels.load());
+  result.pixelSamples.resize(pixelCount);
+  for (size_t i = 0; i < pixelCount; ++i) result.pixelSamples[i] = counts[i].load();
 
   result.stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   result.stats.samples = samples.load();
@@ -190,6 +305,11 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
   result.stats.nonFiniteSamples = nonFinite.load();
   result.stats.unfinishedPixels = unfinished.load();
   result.stats.finishedPixels = finishedPixels.load();
+  result.stats.minPixelSamples = result.stats.finishedPixels ? minSamples.load() : 0;
+  result.stats.maxPixelSamples = maxSamples.load();
+  result.stats.stopped = stopped.load();
+  result.stats.resumedPixels = resumed.load();
+  result.stats.checkpoints = checkpoints;
   return result;
 }
 

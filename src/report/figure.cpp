@@ -78,7 +78,9 @@ std::vector<FigureCell> renderFigureCells(const FigureRequest& request) {
       SceneDefines defines = request.defines;
       defines["model"] = model;
       defines["shape"] = shape;
-      built.push_back(buildScene(loadSceneDescription(file, defines), model));
+      SceneDescription description = loadSceneDescription(file, defines);
+      overrideNormals(description, request.normals, request.creaseAngleDeg);
+      built.push_back(buildScene(description, model));
       FigureCell cell{shape, model, {}, 0, 0, {}, 0, 0, 0};
       cell.buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
       cell.primitives = built.back().scene->primitiveCount();

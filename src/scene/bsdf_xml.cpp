@@ -30,8 +30,19 @@ IorValue parseIor(ObjectProperties& props, std::string_view name, const char* fa
   return ior;
 }
 
+/// Mitsuba's specular_reflectance / specular_transmittance tints: quadtri's BSDFs have none, so
+/// only the default (white) is accepted, and anything else is an error rather than a silently
+/// different image.
+void requireWhite(ObjectProperties& props, std::string_view name) {
+  const Color c = props.getColor(name, Color(Color::Ones()));
+  if (!(c == Color::Ones()).all())
+    props.fail(name, "{}, {}, {} is not supported; quadtri implements only the default 1", c[0],
+               c[1], c[2]);
+}
+
 /// conductor/roughconductor: a named material or explicit eta and k, as in Mitsuba.
 void parseConductor(ObjectProperties& props, BsdfDesc& desc) {
+  requireWhite(props, "specular_reflectance");
   desc.material = props.getString("material", "none");
   desc.eta = props.getColor("eta", Color(Color::Zero()));
   desc.k = props.getColor("k", Color(Color::Ones()));
@@ -58,6 +69,8 @@ size_t parseBsdf(const XmlElement& element, SceneParseState& state) {
     desc.type = BsdfDesc::Type::Dielectric;
     desc.intIor = parseIor(props, "int_ior", "bk7");
     desc.extIor = parseIor(props, "ext_ior", "air");
+    requireWhite(props, "specular_reflectance");
+    requireWhite(props, "specular_transmittance");
   } else if (type == "conductor") {
     desc.type = BsdfDesc::Type::Conductor;
     parseConductor(props, desc);
@@ -72,7 +85,20 @@ size_t parseBsdf(const XmlElement& element, SceneParseState& state) {
                  "'{}' is not supported; quadtri implements only <string name=\"distribution\" "
                  "value=\"ggx\"/>",
                  distribution);
-    desc.alpha = props.getFloat("alpha", 0.1);
+    // alpha, or alpha_u = alpha_v (quadtri's GGX is isotropic).
+    if (props.has("alpha_u") || props.has("alpha_v")) {
+      if (props.has("alpha")) props.fail("alpha_u", "and alpha both given; use one of them");
+      const double u = props.getFloat("alpha_u", 0.1), v = props.getFloat("alpha_v", 0.1);
+      if (u != v)
+        props.fail("alpha_u", "{} differs from alpha_v {}; quadtri's GGX is isotropic", u, v);
+      desc.alpha = u;
+    } else {
+      desc.alpha = props.getFloat("alpha", 0.1);
+    }
+    // Visible-normal sampling changes how directions are drawn, not the BSDF: quadtri samples
+    // the distribution of normals, which has the same expected image.
+    props.ignore("sample_visible", "quadtri samples the GGX normals, same expected image",
+                 state.scene.notes);
     if (!(desc.alpha > 0.0 && desc.alpha <= 1.0))
       props.fail("alpha", "must be in (0, 1], got {}", desc.alpha);
   } else if (type == "twosided") {

@@ -23,8 +23,10 @@ Color nonNegativeColor(ObjectProperties& props, std::string_view name,
 
 }  // namespace
 
-EmitterDesc parseEmitter(const XmlElement& element) {
+EmitterDesc parseEmitter(const XmlElement& element, std::vector<std::string>& notes) {
   ObjectProperties props(element, {});
+  // Mitsuba's relative chance of picking this light: it changes the noise, not the image.
+  props.ignore("sampling_weight", "quadtri picks lights by their power", notes);
   EmitterDesc desc;
   desc.location = props.location();
   if (props.type() == "point") {
@@ -48,8 +50,9 @@ EmitterDesc parseEmitter(const XmlElement& element) {
   return desc;
 }
 
-Color parseAreaEmitter(const XmlElement& element) {
+Color parseAreaEmitter(const XmlElement& element, std::vector<std::string>& notes) {
   ObjectProperties props(element, {});
+  props.ignore("sampling_weight", "quadtri picks lights by their power", notes);
   if (props.type() != "area")
     element.fail("a <shape> may only contain an emitter of type 'area', got '{}'", props.type());
   const Color radiance = nonNegativeColor(props, "radiance", Color(Color::Ones()));

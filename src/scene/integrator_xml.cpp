@@ -37,7 +37,7 @@ void parsePathParameters(ObjectProperties& props, IntegratorDesc& desc) {
 
 }  // namespace
 
-IntegratorDesc parseIntegrator(const XmlElement& element) {
+IntegratorDesc parseIntegrator(const XmlElement& element, std::vector<std::string>& /*notes*/) {
   ObjectProperties props(element, {"integrator"});
   IntegratorDesc desc;
   desc.location = props.location();

@@ -3,15 +3,56 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 
+#include "quadtri/scene/spectrum.h"
 #include "transform_xml.h"
 
 namespace quadtri {
 
 namespace {
 
-constexpr std::string_view kPropertyTags[] = {"float", "integer", "boolean", "string",
-                                              "rgb",   "point",   "vector",  "transform"};
+constexpr std::string_view kPropertyTags[] = {"float", "integer", "boolean",   "string",  "rgb",
+                                              "point", "vector",  "transform", "spectrum"};
+
+/// <spectrum value="0.5"/> or <spectrum value="400:0.1, 500:0.5, 600:0.3"/>.
+Color parseSpectrum(const XmlElement& e, std::string_view name) {
+  if (e.has("filename"))
+    e.fail(
+        "{}: <spectrum filename=...> (a spectral data file) is not supported; give the "
+        "values inline as wavelength:value pairs",
+        name);
+  const std::string_view text = e.required("value");
+  if (text.find(':') == std::string_view::npos) {
+    const std::vector<double> v = parseNumberList(e, text, name);
+    if (v.size() != 1)
+      e.fail("{}: <spectrum> value must be one number or wavelength:value pairs, got {} numbers",
+             name, v.size());
+    return Color::Constant(v[0]);
+  }
+  std::vector<double> nm, values;
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t end = text.find(',', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view pair = text.substr(start, end - start);
+    while (!pair.empty() && std::isspace(static_cast<unsigned char>(pair.front())))
+      pair.remove_prefix(1);
+    while (!pair.empty() && std::isspace(static_cast<unsigned char>(pair.back())))
+      pair.remove_suffix(1);
+    const size_t colon = pair.find(':');
+    if (colon == std::string_view::npos)
+      e.fail("{}: spectrum entry '{}' is not wavelength:value", name, pair);
+    nm.push_back(parseNumber(e, pair.substr(0, colon), name));
+    values.push_back(parseNumber(e, pair.substr(colon + 1), name));
+    start = end + 1;
+  }
+  try {
+    return spectrumToRgb(nm, values);
+  } catch (const Error& error) {
+    e.fail("{}: {}", name, error.what());
+  }
+}
 
 std::string_view typeName(PropertyType type) {
   return kPropertyTags[int(type)];
@@ -63,6 +104,10 @@ Property parseProperty(const XmlElement& e, PropertyType type) {
     case PropertyType::Transform:
       e.checkAttributes({"name"});
       p.value = parseTransform(e);
+      break;
+    case PropertyType::Spectrum:
+      e.checkAttributes({"name", "value", "filename"});
+      p.value = parseSpectrum(e, p.name);
       break;
   }
   return p;
@@ -184,9 +229,10 @@ Color ObjectProperties::getColor(std::string_view name, std::optional<Color> fal
     if (!fallback) element_.fail("{} needs <rgb name=\"{}\" .../>", describe(), name);
     return *fallback;
   }
-  if (p->type == PropertyType::Rgb) return std::get<Color>(p->value);
+  if (p->type == PropertyType::Rgb || p->type == PropertyType::Spectrum)
+    return std::get<Color>(p->value);
   if (p->type == PropertyType::Float) return Color::Constant(std::get<double>(p->value));
-  wrongType(*p, "<rgb> or <float>");
+  wrongType(*p, "<rgb>, <spectrum> or <float>");
 }
 
 Vec3 ObjectProperties::getVector(std::string_view name, std::optional<Vec3> fallback) {
@@ -235,6 +281,14 @@ std::optional<XmlElement> ObjectProperties::takeOptional(std::string_view tag) {
   if (found.size() > 1) found[1].fail("{} has more than one <{}>", describe(), tag);
   if (found.empty()) return std::nullopt;
   return found.front();
+}
+
+void ObjectProperties::ignore(std::string_view name, std::string_view why,
+                              std::vector<std::string>& notes) {
+  const Property* p = use(name);
+  if (p)
+    notes.push_back(
+        fmt::format("{}: note: {}: {} ignored ({})", p->element.location(), describe(), name, why));
 }
 
 void ObjectProperties::finish() const {

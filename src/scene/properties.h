@@ -8,14 +8,24 @@
 #include <variant>
 #include <vector>
 
-#include "quadtri/math/vec.h"
 #include "quadtri/math/color.h"
+#include "quadtri/math/vec.h"
 #include "xml_file.h"
 
 namespace quadtri {
 
 /// The XML tag a property was written with.
-enum class PropertyType { Float, Integer, Boolean, String, Rgb, Point, Vector, Transform };
+enum class PropertyType {
+  Float,
+  Integer,
+  Boolean,
+  String,
+  Rgb,
+  Point,
+  Vector,
+  Transform,
+  Spectrum
+};
 
 /// One <float>/<integer>/.../<transform> child, parsed.
 struct Property {
@@ -45,7 +55,8 @@ class ObjectProperties {
   std::optional<long long> getOptionalInteger(std::string_view name);
   bool getBoolean(std::string_view name, std::optional<bool> fallback = std::nullopt);
   std::string getString(std::string_view name, std::optional<std::string> fallback = std::nullopt);
-  /// <rgb> or a <float> grey level.
+  /// <rgb>, <spectrum> (one value, or wavelength:value pairs converted to RGB; spectrum.h)
+  /// or a <float> grey level.
   Color getColor(std::string_view name, std::optional<Color> fallback = std::nullopt);
   /// <point> or <vector>.
   Vec3 getVector(std::string_view name, std::optional<Vec3> fallback = std::nullopt);
@@ -56,6 +67,10 @@ class ObjectProperties {
                                                      std::variant<double, std::string> fallback);
 
   bool has(std::string_view name) const { return find(name) != nullptr; }
+  /// Accepts `name` (of any type) without using it: when present, appends "FILE:LINE: note:
+  /// <object>: <name> ignored (<why>)" to `notes`. For Mitsuba properties that do not change
+  /// quadtri's image.
+  void ignore(std::string_view name, std::string_view why, std::vector<std::string>& notes);
   /// The element of a property, for errors about its value (the object's own when absent).
   const XmlElement& at(std::string_view name) const;
   /// Throws "FILE:LINE: <what>" at the property (or object) named `name`.

@@ -14,6 +14,8 @@
 #include "quadtri/render/integrator/direct_integrator.h"
 #include "quadtri/render/integrator/normals_integrator.h"
 #include "quadtri/render/integrator/path_integrator.h"
+#include "quadtri/surface/corner_stats.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri {
 namespace {
@@ -115,7 +117,9 @@ TriangleMesh cubeMesh() {
 }  // namespace
 
 BuiltScene buildScene(const SceneDescription& description,
-                      const std::optional<std::string>& modelOverride) {
+                      const std::optional<std::string>& modelOverride, uint64_t maxMemoryBytes) {
+  MemoryBudget budget;
+  budget.maxBytes = maxMemoryBytes;
   BuiltScene built;
   built.scene = std::make_unique<RenderScene>();
   RenderScene& scene = *built.scene;
@@ -129,12 +133,24 @@ BuiltScene buildScene(const SceneDescription& description,
   camera.farClip = sensor.farClip;
   camera.width = sensor.film.width;
   camera.height = sensor.film.height;
-  at(sensor.location, toString(sensor), [&] { scene.setCamera(PerspectiveCamera(camera)); });
+  camera.cropX = sensor.film.cropX;
+  camera.cropY = sensor.film.cropY;
+  camera.cropWidth = sensor.film.cropWidth;
+  camera.cropHeight = sensor.film.cropHeight;
+  camera.principalPointOffset = sensor.principalPointOffset;
+  at(sensor.location, toString(sensor), [&] {
+    const PerspectiveCamera film(camera);  // its width and height are the crop window's
+    chargeMemory(budget, renderImageBytes(film.width(), film.height()), "the film",
+                 fmt::format("a {}x{} image", film.width(), film.height()));
+    scene.setCamera(film);
+  });
   built.options.samplesPerPixel = sensor.sampler.sampleCount;
   built.options.seed = uint64_t(uint32_t(sensor.sampler.seed));
-  built.options.filter.kind = sensor.film.filter.type == FilterDesc::Type::Box
-                                  ? ReconstructionFilter::Kind::Box
-                                  : ReconstructionFilter::Kind::Gaussian;
+  built.options.filter.kind =
+      sensor.film.filter.type == FilterDesc::Type::Box    ? ReconstructionFilter::Kind::Box
+      : sensor.film.filter.type == FilterDesc::Type::Tent ? ReconstructionFilter::Kind::Tent
+                                                          : ReconstructionFilter::Kind::Gaussian;
+  built.options.filter.tentRadius = sensor.film.filter.radius;
   built.options.filter.stddev = sensor.film.filter.stddev;
   built.integrator = at(description.integrator.location, toString(description.integrator), [&] {
     return makeIntegrator(description.integrator, sensor.sampler.sampleCount);
@@ -163,8 +179,12 @@ BuiltScene buildScene(const SceneDescription& description,
         return;
       }
       const bool isFile = s.type == ShapeDesc::Type::Obj || s.type == ShapeDesc::Type::Ply;
+      const std::string model = !isFile ? "flat" : modelOverride ? *modelOverride : s.model;
+      const Tessellation tessellation =
+          s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
+      budget.bytesPerTriangle = modelBytesPerTriangle(model, tessellation, ModelUse::Render);
       TriangleMesh mesh =
-          isFile ? loadMesh(s.filename)
+          isFile ? loadMesh(s.filename, s.normals, &budget)
                  : (s.type == ShapeDesc::Type::Rectangle ? rectangleMesh() : cubeMesh());
       if (s.faceNormals) {
         mesh.normals.clear();
@@ -172,11 +192,12 @@ BuiltScene buildScene(const SceneDescription& description,
       }
       if (isFile) built.inputTriangles += mesh.triangleCount();
       transformMesh(mesh, s.toWorld, s.flipNormals);
-      const std::string model = !isFile ? "flat" : modelOverride ? *modelOverride : s.model;
-      const Tessellation tessellation =
-          s.tessellation.empty() ? Tessellation{} : Tessellation::parse(s.tessellation);
       std::shared_ptr<const SurfaceModel> converted =
           makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
+      if (isFile)
+        if (std::optional<std::string> warning = conversionWarning(
+                *converted, fmt::format("{} {}", s.location, s.filename.string())))
+          built.warnings.push_back(std::move(*warning));
       scene.addModel(std::move(converted), tessellation, bsdf, s.areaRadiance, name);
     });
   }

@@ -105,15 +105,26 @@ std::string_view shapeTypeName(ShapeDesc::Type type) {
 }
 
 std::string toString(const SensorDesc& s) {
+  std::string extras;
+  if (s.principalPointOffset != Vec2::Zero())
+    extras += fmt::format(" principal_point_offset=({}, {})", s.principalPointOffset.x(),
+                          s.principalPointOffset.y());
+  if (s.film.cropX != 0 || s.film.cropY != 0 || s.film.cropWidth != 0 || s.film.cropHeight != 0)
+    extras += fmt::format(" crop={}x{}+{}+{}", s.film.cropWidth, s.film.cropHeight, s.film.cropX,
+                          s.film.cropY);
   return fmt::format(
       "<sensor type=\"perspective\"> ({}) fov={} fov_axis={} near_clip={} far_clip={} "
-      "to_world=[{}] film={}x{} rfilter={}{} sample_count={} seed={}",
+      "to_world=[{}] film={}x{} rfilter={}{} sample_count={} seed={}{}",
       s.location, s.fov, fovAxisName(s.fovAxis), s.nearClip, s.farClip, matrixText(s.toWorld),
-      s.film.width, s.film.height, s.film.filter.type == FilterDesc::Type::Box ? "box" : "gaussian",
-      s.film.filter.type == FilterDesc::Type::Box
-          ? std::string()
+      s.film.width, s.film.height,
+      s.film.filter.type == FilterDesc::Type::Box    ? "box"
+      : s.film.filter.type == FilterDesc::Type::Tent ? "tent"
+                                                     : "gaussian",
+      s.film.filter.type == FilterDesc::Type::Box ? std::string()
+      : s.film.filter.type == FilterDesc::Type::Tent
+          ? fmt::format("(radius={})", s.film.filter.radius)
           : fmt::format("(stddev={})", s.film.filter.stddev),
-      s.sampler.sampleCount, s.sampler.seed);
+      s.sampler.sampleCount, s.sampler.seed, extras);
 }
 
 std::string toString(const IntegratorDesc& i) {
@@ -197,6 +208,16 @@ void overrideSamplesPerPixel(SceneDescription& scene, int samplesPerPixel) {
          samplesPerPixel, scene.file.string());
   integrator.maxSamples = samplesPerPixel;
   integrator.minSamples = std::min(integrator.minSamples, samplesPerPixel);
+}
+
+void overrideNormals(SceneDescription& scene, std::optional<NormalSource> source,
+                     std::optional<double> creaseAngleDeg) {
+  if (creaseAngleDeg) checkCreaseAngle(*creaseAngleDeg);
+  for (ShapeDesc& shape : scene.shapes) {
+    if (shape.type != ShapeDesc::Type::Obj && shape.type != ShapeDesc::Type::Ply) continue;
+    if (source) shape.normals.source = *source;
+    if (creaseAngleDeg) shape.normals.creaseAngleDeg = *creaseAngleDeg;
+  }
 }
 
 }  // namespace quadtri

@@ -68,17 +68,17 @@ class SceneParser {
         parseInclude(child, depth);
       } else if (tag == "sensor") {
         if (sensorLocation_) child.fail("a second <sensor> (first at {})", *sensorLocation_);
-        state_.scene.sensor = parseSensor(child);
+        state_.scene.sensor = parseSensor(child, state_.scene.notes);
         sensorLocation_ = child.location();
       } else if (tag == "integrator") {
         if (integratorLocation_)
           child.fail("a second <integrator> (first at {})", *integratorLocation_);
-        state_.scene.integrator = parseIntegrator(child);
+        state_.scene.integrator = parseIntegrator(child, state_.scene.notes);
         integratorLocation_ = child.location();
       } else if (tag == "bsdf") {
         parseBsdf(child, state_);
       } else if (tag == "emitter") {
-        state_.scene.emitters.push_back(parseEmitter(child));
+        state_.scene.emitters.push_back(parseEmitter(child, state_.scene.notes));
       } else if (tag == "shape") {
         state_.scene.shapes.push_back(parseShape(child, state_));
       } else {

@@ -23,18 +23,19 @@ struct SceneParseState {
   void declareId(const std::string& id, const XmlElement& at);
 };
 
-/// <sensor type="perspective"> with its nested <film> (and <rfilter>) and <sampler>.
-SensorDesc parseSensor(const XmlElement& element);
+/// <sensor type="perspective"> with its nested <film> (and <rfilter>) and <sampler>. Mitsuba
+/// properties that do not change quadtri's image are accepted with a line in `notes`.
+SensorDesc parseSensor(const XmlElement& element, std::vector<std::string>& notes);
 /// <integrator>; adaptive's maxSamples is left 0 when not given (the caller fills it in).
-IntegratorDesc parseIntegrator(const XmlElement& element);
+IntegratorDesc parseIntegrator(const XmlElement& element, std::vector<std::string>& notes);
 /// <bsdf>, appended to state.scene.bsdfs (a twosided's nested BSDF first); returns its index.
 size_t parseBsdf(const XmlElement& element, SceneParseState& state);
 /// <ref id="..."/> naming a BSDF declared earlier; returns its index.
 size_t resolveBsdfRef(const XmlElement& ref, const SceneParseState& state);
 /// A top-level <emitter> (point or constant).
-EmitterDesc parseEmitter(const XmlElement& element);
+EmitterDesc parseEmitter(const XmlElement& element, std::vector<std::string>& notes);
 /// An <emitter type="area"> nested in a shape; returns its radiance.
-Color parseAreaEmitter(const XmlElement& element);
+Color parseAreaEmitter(const XmlElement& element, std::vector<std::string>& notes);
 /// <shape>, with its nested or referenced BSDF and optional area emitter.
 ShapeDesc parseShape(const XmlElement& element, SceneParseState& state);
 

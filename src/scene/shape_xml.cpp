@@ -4,6 +4,8 @@
 //     <string name="filename" value="meshes/teapot.obj"/>  <!-- relative to the XML file -->
 //     <string name="model" value="quadric-implicit"/>      <!-- quadtri: see modelNames() -->
 //     <string name="tessellation" value="8"/>              <!-- quadtri: N or "thesis" -->
+//     <string name="normals" value="file"/>                 <!-- quadtri: file, average, angle -->
+//     <float name="crease_angle" value="30"/>               <!-- quadtri: degrees, 0 to 180 -->
 //     <boolean name="face_normals" value="false"/> <boolean name="flip_normals" value="false"/>
 //     <transform name="to_world"> ... </transform>
 //     <ref id="glass"/>                                     <!-- or a nested <bsdf> -->
@@ -16,8 +18,8 @@
 #include <algorithm>
 
 #include "properties.h"
-#include "scene_parser.h"
 #include "quadtri/surface/model.h"
+#include "scene_parser.h"
 
 namespace quadtri {
 
@@ -31,6 +33,18 @@ void parseMeshParameters(ObjectProperties& props, ShapeDesc& desc) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(desc.filename, ec))
     props.fail("filename", "'{}' is not a readable file", desc.filename.string());
+  const std::string normals = props.getString("normals", "file");
+  if (normals != "file" && normals != "average" && normals != "angle")
+    props.fail("normals", "'{}' is not a normal source; expected file, average or angle", normals);
+  desc.normals.source = parseNormalSource(normals);
+  if (props.has("crease_angle")) {
+    if (desc.normals.source == NormalSource::Average)
+      props.fail("crease_angle", "applies to angle-weighted normals, not to normals 'average'");
+    desc.normals.creaseAngleDeg = props.getFloat("crease_angle");
+    if (!(desc.normals.creaseAngleDeg >= 0.0 && desc.normals.creaseAngleDeg <= 180.0))
+      props.fail("crease_angle", "{} is out of range: expected degrees from 0 to 180",
+                 desc.normals.creaseAngleDeg);
+  }
   desc.faceNormals = props.getBoolean("face_normals", false);
   desc.model = props.getString("model", "shading");
   const std::vector<std::string>& models = modelNames();
@@ -68,6 +82,7 @@ ShapeDesc parseShape(const XmlElement& element, SceneParseState& state) {
   if (type == "obj" || type == "ply") {
     desc.type = type == "obj" ? ShapeDesc::Type::Obj : ShapeDesc::Type::Ply;
     parseMeshParameters(props, desc);
+    props.ignore("flip_tex_coords", "quadtri reads no texture coordinates", state.scene.notes);
   } else if (type == "rectangle") {
     desc.type = ShapeDesc::Type::Rectangle;
   } else if (type == "cube") {
@@ -91,7 +106,7 @@ ShapeDesc parseShape(const XmlElement& element, SceneParseState& state) {
   }
   desc.bsdf = shapeBsdf(props, state);
   if (const std::optional<XmlElement> emitter = props.takeOptional("emitter"))
-    desc.areaRadiance = parseAreaEmitter(*emitter);
+    desc.areaRadiance = parseAreaEmitter(*emitter, state.scene.notes);
   props.finish();
   state.declareId(desc.id, element);
   return desc;

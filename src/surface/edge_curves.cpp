@@ -6,6 +6,7 @@
 #include <Eigen/QR>
 
 #include "quadtri/mesh/topology.h"
+#include "quadtri/surface/creases.h"
 
 namespace quadtri {
 namespace {
@@ -15,30 +16,33 @@ namespace {
 constexpr double kDamping = 1e-7;
 // The control point may sit at most this many edge lengths from the chord midpoint.
 constexpr double kMaxOffset = 1.0;
+// Distance from a tangent plane, relative to the edge length, beyond which the control point
+// counts as having given up that plane (far above the damping's bias on real data, ~1e-14/σ).
+constexpr double kTangentTolerance = 1e-6;
 
 // The control point of one mesh edge, from the normals its triangles share (see the header).
-Vec3 sharedEdgeControlPoint(const TriangleMesh& mesh, const Edge& edge) {
+Vec3 sharedEdgeControlPoint(const TriangleMesh& mesh, const Edge& edge,
+                            const std::array<EdgeEnd, 2>& ends, bool& gaveUp) {
+  gaveUp = false;
+  const Vec3& va = mesh.positions[edge.a];
+  const Vec3& vb = mesh.positions[edge.b];
+  const auto [t0, k0] = edge.sides.front();
+  const bool f0 = mesh.triangles[t0][k0] == edge.a;
+  const Vec3 na0 = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
+  const Vec3 nb0 = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
+  // At a crease the tangent follows the crease line, which both sides share (creases.h).
+  if (ends[0].crease() || ends[1].crease())
+    return creaseControlPoint(va, ends[0], na0, vb, ends[1], nb0);
+  // With a single side (or no split) the mean is the corner normal itself: keep it exact.
+  if (ends[0].kind == EdgeEnd::Kind::Shared && ends[1].kind == EdgeEnd::Kind::Shared)
+    return edgeControlPoint(va, na0, vb, nb0, &gaveUp);
   Vec3 na = Vec3::Zero(), nb = Vec3::Zero();
   for (auto [t, k] : edge.sides) {
     const bool forward = mesh.triangles[t][k] == edge.a;
     na += mesh.cornerNormal(t, forward ? k : (k + 1) % 3);
     nb += mesh.cornerNormal(t, forward ? (k + 1) % 3 : k);
   }
-  const Vec3& va = mesh.positions[edge.a];
-  const Vec3& vb = mesh.positions[edge.b];
-  // With a single side (or no split) the mean is the corner normal itself: keep it exact.
-  const auto [t0, k0] = edge.sides.front();
-  const bool f0 = mesh.triangles[t0][k0] == edge.a;
-  const Vec3 na0 = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
-  const Vec3 nb0 = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
-  bool split = false;
-  for (auto [t, k] : edge.sides) {
-    const bool forward = mesh.triangles[t][k] == edge.a;
-    split |= mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na0;
-    split |= mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb0;
-  }
-  return split ? edgeControlPoint(va, safeNormalized(na, na0), vb, safeNormalized(nb, nb0))
-               : edgeControlPoint(va, na0, vb, nb0);
+  return edgeControlPoint(va, safeNormalized(na, na0), vb, safeNormalized(nb, nb0), &gaveUp);
 }
 
 }  // namespace
@@ -50,7 +54,9 @@ bool edgeEndsSwapped(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3&
   return less(vj, vi) || (vj == vi && less(nj, ni));
 }
 
-Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, const Vec3& njIn) {
+Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, const Vec3& njIn,
+                      bool* gaveUp) {
+  if (gaveUp) *gaveUp = false;
   // Canonical order makes the result independent of which side asks.
   const bool swap = edgeEndsSwapped(viIn, niIn, vjIn, njIn);
   const Vec3& vi = swap ? vjIn : viIn;
@@ -83,23 +89,50 @@ Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, cons
   rhs << r, 0.0, 0.0, 0.0;
   Vec3 delta = A.householderQr().solve(rhs);
   const double dl = delta.norm();
-  if (!std::isfinite(dl)) return mid;
-  if (dl > kMaxOffset * len) delta *= kMaxOffset * len / dl;
+  if (!std::isfinite(dl)) {
+    if (gaveUp) *gaveUp = true;
+    return mid;
+  }
+  if (dl > kMaxOffset * len) {
+    delta *= kMaxOffset * len / dl;
+    if (gaveUp) *gaveUp = true;
+  }
+  // Residuals of the two tangent planes: ni·δ = r0 and nj·δ = r1.
+  if (gaveUp && std::max(std::abs(ni.dot(delta) - r[0]), std::abs(nj.dot(delta) - r[1])) >
+                    kTangentTolerance * len)
+    *gaveUp = true;
   return mid + delta;
 }
 
-std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh) {
+std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
+                                                   std::vector<uint8_t>* gaveUpPatches) {
   const MeshTopology topo(mesh);
+  const EdgeEnds ends = edgeEnds(mesh, topo);
   std::vector<std::array<Vec3, 3>> out(mesh.triangleCount());
+  std::vector<uint8_t> gaveUpEdges(gaveUpPatches ? topo.edges.size() : 0, 0);
   // Each edge writes only its own sides' slots, so edges are independent and the result does
   // not depend on the thread count.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      for (size_t e = range.begin(); e != range.end(); ++e) {
-                        const Vec3 b = sharedEdgeControlPoint(mesh, topo.edges[e]);
-                        for (auto [t, k] : topo.edges[e].sides) out[t][k] = b;
-                      }
-                    });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096), [&](const tbb::
+                                                                                    blocked_range<
+                                                                                        size_t>&
+                                                                                        range) {
+    for (size_t e = range.begin(); e != range.end(); ++e) {
+      const Edge& edge = topo.edges[e];
+      const auto [t0, k0] = edge.sides.front();
+      const bool forward = mesh.triangles[t0][k0] == edge.a;
+      const auto& side = ends[t0][k0];
+      const std::array<EdgeEnd, 2> ab = forward ? side : std::array<EdgeEnd, 2>{side[1], side[0]};
+      bool gaveUp = false;
+      const Vec3 b = sharedEdgeControlPoint(mesh, edge, ab, gaveUp);
+      for (auto [t, k] : edge.sides) out[t][k] = b;
+      if (gaveUpPatches) gaveUpEdges[e] = gaveUp;
+    }
+  });
+  if (gaveUpPatches) {
+    gaveUpPatches->assign(mesh.triangleCount(), 0);
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) (*gaveUpPatches)[t] |= gaveUpEdges[topo.edgeOf[t][k]];
+  }
   return out;
 }
 

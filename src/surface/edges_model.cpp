@@ -75,9 +75,11 @@ std::array<EdgeCurve, 3> thesisEdgeCurves(const QuadraticPatch& patch) {
 }
 
 EdgesModel::EdgesModel(std::shared_ptr<const TriangleMesh> mesh, Blend blend)
-    : SurfaceModel(std::move(mesh)),
-      blend_(blend),
-      controlPoints_(edgeControlPoints(this->mesh())) {}
+    : SurfaceModel(std::move(mesh)), blend_(blend) {
+  std::vector<uint8_t> fallbacks;
+  controlPoints_ = edgeControlPoints(this->mesh(), &fallbacks);
+  setFallbacks(std::move(fallbacks));
+}
 
 SurfacePoint EdgesModel::evaluate(size_t t, double u, double v) const {
   const QuadraticPatch p = edges(t);

@@ -42,7 +42,9 @@ std::optional<Vec3> projectOntoQuadric(const QuadricCoeffs& q, const QuadraticPa
 ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
     : SurfaceModel(std::move(meshPtr)) {
   const TriangleMesh& m = mesh();
-  const auto controlPoints = edgeControlPoints(m);
+  std::vector<uint8_t> fallbacks;
+  const auto controlPoints = edgeControlPoints(m, &fallbacks);
+  setFallbacks(std::move(fallbacks));
   const size_t n = m.triangleCount();
   parametric_.resize(n);
   parametricOrientation_.resize(n);

@@ -4,7 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "quadtri/mesh/topology.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/quadric_patch.h"
 
@@ -17,29 +16,6 @@ LocalTriangle localTriangle(const TriangleMesh& mesh, size_t t) {
     tri.n[k] = safeNormalized(mesh.cornerNormal(t, k), mesh.faceNormal(t));
   }
   return tri;
-}
-
-bool edgesShareNormals(const TriangleMesh& mesh) {
-  if (!mesh.hasNormals()) return true;
-  const MeshTopology topo(mesh);
-  for (const Edge& edge : topo.edges) {
-    // Normal indices of the first side at endpoints a and b; every other side must match them.
-    uint32_t na = 0, nb = 0;
-    bool first = true;
-    for (auto [t, k] : edge.sides) {
-      const bool forward = mesh.triangles[t][k] == edge.a;
-      const uint32_t ia = mesh.normalIndices[t][forward ? k : (k + 1) % 3];
-      const uint32_t ib = mesh.normalIndices[t][forward ? (k + 1) % 3 : k];
-      if (first) {
-        na = ia;
-        nb = ib;
-        first = false;
-      } else if (mesh.normals[ia] != mesh.normals[na] || mesh.normals[ib] != mesh.normals[nb]) {
-        return false;
-      }
-    }
-  }
-  return true;
 }
 
 Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v, const Vec3& du,

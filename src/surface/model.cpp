@@ -20,6 +20,14 @@ const std::vector<QuadricPatch>& SurfaceModel::quadricPatches() const {
   return none;
 }
 
+void SurfaceModel::setFallbacks(std::vector<uint8_t> flags) {
+  if (!flags.empty() && flags.size() != patchCount())
+    fail("model '{}': {} fallback flags for {} patches", name(), flags.size(), patchCount());
+  fallbackCount_ = 0;
+  for (uint8_t f : flags) fallbackCount_ += f != 0;
+  fallbacks_ = std::move(flags);
+}
+
 const std::vector<std::string>& modelNames() {
   static const std::vector<std::string> names = {
       "flat",

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/surface/creases.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/local_patches.h"
 
@@ -10,10 +11,15 @@ namespace {
 
 // (1 − cos 0.1°)/2: Δc (and 1 − Δc) below this count as parallel (opposite) normals.
 const double kParallelDeltaC = 0.5 * (1.0 - std::cos(0.1 * kPi / 180.0));
+// sin 0.1°: a straight edge whose chord leaves a tangent plane by more than this (relative to
+// its length) is not tangent there.
+const double kTangentTolerance = std::sin(0.1 * kPi / 180.0);
 
 }  // namespace
 
-Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const Vec3& n1In) {
+Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const Vec3& n1In,
+                     bool* gaveUp) {
+  if (gaveUp) *gaveUp = false;
   // The formula is symmetric; a canonical order makes both sides of an edge agree bit for bit.
   const bool swap = edgeEndsSwapped(x0In, n0In, x1In, n1In);
   const Vec3& x0 = swap ? x1In : x0In;
@@ -27,27 +33,44 @@ Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const
   // cancellation in 1 − n0·n1 when the normals are close.
   const double deltaC = dv.squaredNorm();
   const double oneMinusDeltaC = v.squaredNorm();
-  if (deltaC <= kParallelDeltaC || oneMinusDeltaC <= kParallelDeltaC) return Vec3::Zero();
+  if (deltaC <= kParallelDeltaC || oneMinusDeltaC <= kParallelDeltaC) {
+    if (gaveUp)
+      *gaveUp =
+          std::max(std::abs(n0.dot(dx)), std::abs(n1.dot(dx))) > kTangentTolerance * dx.norm();
+    return Vec3::Zero();
+  }
   return (dx.dot(dv) / oneMinusDeltaC) * v + (dx.dot(v) / deltaC) * dv;
 }
 
-NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
-    : SurfaceModel(std::move(mesh)), sharesEdges_(edgesShareNormals(this->mesh())) {
+NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
+  const EdgeEnds ends = edgeEnds(m);
   curvatures_.resize(m.triangleCount());
   patches_.resize(m.triangleCount());
+  std::vector<uint8_t> gaveUp(m.triangleCount(), 0);
   for (size_t t = 0; t < m.triangleCount(); ++t) {
     const LocalTriangle tri = localTriangle(m, t);
     QuadraticPatch& patch = patches_[t];
     for (int k = 0; k < 3; ++k) {
       const int l = (k + 1) % 3;
-      const Vec3 c = nagataCurvature(tri.p[k], tri.n[k], tri.p[l], tri.n[l]);
-      curvatures_[t][k] = c;
+      const auto& [ek, el] = ends[t][k];
       patch.v[k] = tri.p[k];
+      if (ek.crease() || el.crease()) {
+        // At a crease the tangent follows the crease line both sides share (creases.h).
+        patch.b[k] = creaseControlPoint(tri.p[k], ek, tri.n[k], tri.p[l], el, tri.n[l]);
+        curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * patch.b[k];
+        continue;
+      }
+      bool straight = false;
+      const Vec3 c = nagataCurvature(tri.p[k], ek.normalFor(tri.n[k]), tri.p[l],
+                                     el.normalFor(tri.n[l]), &straight);
+      gaveUp[t] |= straight;
+      curvatures_[t][k] = c;
       // x(t) = x0 + (Δx − c) t + c t² in Bernstein form: control point x0 + (Δx − c)/2.
       patch.b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
     }
   }
+  setFallbacks(std::move(gaveUp));
 }
 
 SurfacePoint NagataModel::evaluate(size_t t, double u, double v) const {

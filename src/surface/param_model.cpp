@@ -8,8 +8,11 @@
 
 namespace quadtri {
 
-ParamModel::ParamModel(std::shared_ptr<const TriangleMesh> mesh)
-    : SurfaceModel(std::move(mesh)), controlPoints_(edgeControlPoints(this->mesh())) {}
+ParamModel::ParamModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
+  std::vector<uint8_t> fallbacks;
+  controlPoints_ = edgeControlPoints(this->mesh(), &fallbacks);
+  setFallbacks(std::move(fallbacks));
+}
 
 SurfacePoint ParamModel::evaluate(size_t t, double u, double v) const {
   const QuadraticPatch p = patch(t);

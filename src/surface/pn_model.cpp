@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/surface/creases.h"
 #include "quadtri/surface/local_patches.h"
 
 namespace quadtri {
@@ -19,7 +20,8 @@ std::array<int, 3> edgeIndex(int a, int b) {
 
 }  // namespace
 
-PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm) {
+PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm,
+                             const std::array<std::array<EdgeEnd, 2>, 3>* ends) {
   PnPatch patch;
   auto at = [&](const std::array<int, 3>& e) -> Vec3& { return patch.b[e[0]][e[1]]; };
   Vec3 edgeSum = Vec3::Zero();
@@ -29,10 +31,21 @@ PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3
     at(c) = p[a];
     for (int b = 0; b < 3; ++b) {
       if (b == a) continue;
-      // Subtracting w_ab n_a, w_ab = (p_b − p_a)·n_a, projects (2p_a + p_b)/3 onto a's tangent
-      // plane.
-      const double w = (p[b] - p[a]).dot(nrm[a]);
-      const Vec3 point = (2.0 * p[a] + p[b] - w * nrm[a]) / 3.0;
+      // The end of edge ab at a: local edge a (a → a+1) starts there, edge b (b → a) ends there.
+      const EdgeEnd* end = nullptr;
+      if (ends) end = b == (a + 1) % 3 ? &(*ends)[a][0] : &(*ends)[b][1];
+      Vec3 point;
+      if (end && end->crease()) {
+        // At a crease: (2p_a + p_b)/3 projected onto the crease line through p_a, which both
+        // sides of the edge share (creases.h).
+        point = p[a] + end->tangentPart(p[b] - p[a], nrm[a]) / 3.0;
+      } else {
+        // Subtracting w_ab n_a, w_ab = (p_b − p_a)·n_a, projects (2p_a + p_b)/3 onto a's
+        // tangent plane.
+        const Vec3& n = end ? end->normalFor(nrm[a]) : nrm[a];
+        const double w = (p[b] - p[a]).dot(n);
+        point = (2.0 * p[a] + p[b] - w * n) / 3.0;
+      }
       at(edgeIndex(a, b)) = point;
       edgeSum += point;
     }
@@ -99,13 +112,13 @@ Vec3 PnPatch::normalField(double u, double v) const {
   return sum;
 }
 
-PnModel::PnModel(std::shared_ptr<const TriangleMesh> mesh)
-    : SurfaceModel(std::move(mesh)), sharesEdges_(edgesShareNormals(this->mesh())) {
+PnModel::PnModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
+  const EdgeEnds ends = edgeEnds(m);
   patches_.reserve(m.triangleCount());
   for (size_t t = 0; t < m.triangleCount(); ++t) {
     const LocalTriangle tri = localTriangle(m, t);
-    patches_.push_back(PnPatch::fromCorners(tri.p, tri.n));
+    patches_.push_back(PnPatch::fromCorners(tri.p, tri.n, &ends[t]));
   }
 }
 

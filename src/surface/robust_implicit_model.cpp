@@ -302,6 +302,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   patches_.resize(m.triangleCount());
   frames_.resize(m.triangleCount());
   std::vector<QuadricCoeffs> pencils(m.triangleCount());
+  std::vector<uint8_t> fallbacks(m.triangleCount(), 0);
   tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
     CornerData data;
     for (int k = 0; k < 3; ++k) {
@@ -310,6 +311,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       data.arcMidpoint[k] = edges[topo.edgeOf[t][k]].arcMidpoint;
     }
     const QuadricFit fit = fitQuadric(data);
+    fallbacks[t] = fit.pointFallback;
     QuadricPatch& patch = patches_[t];
     patch.q = fit.q;
     pencils[t] = fit.pencil;
@@ -411,6 +413,11 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     if (!any) break;
   }
   addBridges(topo, cells);
+  // Fell back: gave up the corner normals (blended, or the triangle's plane), or the triangle
+  // has no extent.
+  for (size_t t = 0; t < m.triangleCount(); ++t)
+    fallbacks[t] |= frames_[t].flat || frames_[t].blend > 0.0;
+  setFallbacks(std::move(fallbacks));
 }
 
 bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double reach,

@@ -73,6 +73,7 @@ QuadricFit pointFit(const CornerData& data) {
   const Vec3 n = safeNormalized(data.normal[0] + data.normal[1] + data.normal[2], data.normal[0]);
   const Vec3& p = data.position[0];
   QuadricFit fit;
+  fit.pointFallback = true;
   Mat4 Q = Mat4::Zero();
   Q.block<3, 1>(0, 3) = 0.5 * n;
   Q.block<1, 3>(3, 0) = 0.5 * n.transpose();

@@ -118,40 +118,101 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellat
   const bool weld = model.sharesEdges();
   const MeshTopology topo(mesh);
   const int steps = pattern.edgeSteps;
+  // Where the mesh splits normals (a crease), the welded points there keep each side's own
+  // surface normal: positions are shared, normals are per corner.
+  std::vector<bool> splitVertex(weld ? mesh.positions.size() : 0, false);
+  std::vector<bool> splitEdge(weld ? topo.edges.size() : 0, false);
+  if (weld && mesh.hasNormals()) {
+    std::vector<Vec3> first(mesh.positions.size());
+    std::vector<bool> seen(mesh.positions.size(), false);
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = mesh.triangles[t][k];
+        const Vec3 n = mesh.cornerNormal(t, k);
+        if (!seen[v]) {
+          seen[v] = true;
+          first[v] = n;
+        } else if (n != first[v]) {
+          splitVertex[v] = true;
+        }
+      }
+    for (size_t e = 0; e < topo.edges.size(); ++e) {
+      const Edge& edge = topo.edges[e];
+      const auto [t0, k0] = edge.sides.front();
+      const bool f0 = mesh.triangles[t0][k0] == edge.a;
+      const Vec3 na = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
+      const Vec3 nb = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
+      for (auto [t, k] : edge.sides) {
+        const bool forward = mesh.triangles[t][k] == edge.a;
+        splitEdge[e] = splitEdge[e] || mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na ||
+                       mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb;
+      }
+    }
+  }
   TriangleMesh out;
   out.positions.reserve(mesh.triangleCount() * pattern.uv.size() / (weld ? 2 : 1));
   std::vector<uint32_t> cornerVertex(weld ? mesh.positions.size() : 0, ~0u);
   // Welded edge points: per mesh edge, `steps - 1` interior points from endpoint a to b.
   std::vector<uint32_t> edgeVertex(weld ? topo.edges.size() * size_t(steps - 1) : 0, ~0u);
-  std::vector<uint32_t> local(pattern.uv.size());
+  std::vector<uint32_t> local(pattern.uv.size()), localNormal(pattern.uv.size());
+  // Normals of a side at a crease point another side created; their indices are marked with
+  // kExtra until the per-point normals before them are all known.
+  constexpr uint32_t kExtra = 1u << 31;
+  std::vector<Vec3> extraNormals;
+  std::vector<Tri> normalIndices;
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
     for (size_t i = 0; i < pattern.uv.size(); ++i) {
       const PointSite& s = pattern.sites[i];
       uint32_t* slot = nullptr;
+      bool split = false;
       if (weld && s.kind == PointSite::Kind::Corner) {
-        slot = &cornerVertex[mesh.triangles[t][s.corner]];
+        const uint32_t v = mesh.triangles[t][s.corner];
+        slot = &cornerVertex[v];
+        split = splitVertex[v];
       } else if (weld && s.kind == PointSite::Kind::Edge) {
         const uint32_t e = topo.edgeOf[t][s.edge];
         const bool fromA = mesh.triangles[t][s.edge] == topo.edges[e].a;
         const int step = fromA ? s.step : steps - s.step;
         slot = &edgeVertex[size_t(e) * (steps - 1) + size_t(step - 1)];
+        split = splitEdge[e];
       }
       if (slot && *slot != ~0u) {
         local[i] = *slot;
+        localNormal[i] = *slot;
+        if (split) {
+          const SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
+          const Vec3 n = safeNormalized(sp.normal, mesh.faceNormal(t));
+          if (n != out.normals[*slot]) {
+            localNormal[i] = kExtra | uint32_t(extraNormals.size());
+            extraNormals.push_back(n);
+          }
+        }
         continue;
       }
       SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
       // Corners are the mesh's own vertices, bit for bit.
       if (s.kind == PointSite::Kind::Corner) sp.position = mesh.corner(t, s.corner);
       local[i] = uint32_t(out.positions.size());
+      localNormal[i] = local[i];
       out.positions.push_back(sp.position);
       out.normals.push_back(safeNormalized(sp.normal, mesh.faceNormal(t)));
       if (slot) *slot = local[i];
     }
-    for (const Tri& tri : pattern.triangles)
+    for (const Tri& tri : pattern.triangles) {
       out.triangles.push_back({local[tri[0]], local[tri[1]], local[tri[2]]});
+      normalIndices.push_back({localNormal[tri[0]], localNormal[tri[1]], localNormal[tri[2]]});
+    }
   }
-  out.normalIndices = out.triangles;
+  if (extraNormals.empty()) {
+    out.normalIndices = out.triangles;
+  } else {
+    const uint32_t base = uint32_t(out.normals.size());
+    out.normals.insert(out.normals.end(), extraNormals.begin(), extraNormals.end());
+    for (Tri& tri : normalIndices)
+      for (uint32_t& n : tri)
+        if (n & kExtra) n = base + (n & ~kExtra);
+    out.normalIndices = std::move(normalIndices);
+  }
   return out;
 }
 

@@ -1,12 +1,12 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
-#include "quadtri/analysis/crack_rate.h"
 #include "fixtures/sphere_patches.h"
-#include "quadtri/math/error.h"
-#include "quadtri/mesh/shapes.h"
+#include "quadtri/analysis/crack_rate.h"
 #include "quadtri/geometry/model_geometry.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/shapes.h"
 
 namespace quadtri {
 namespace {

@@ -2,8 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "quadtri/analysis/metrics.h"
 #include "fixtures/sphere_patches.h"
+#include "quadtri/analysis/metrics.h"
+#include "quadtri/io/csv.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
@@ -227,12 +228,18 @@ TEST(Metrics, JsonAndTableCarryEveryKey) {
                                          "vertex_position_error",
                                          "vertex_normal_error_deg",
                                          "vertex_normal_flip_rate",
+                                         "inconsistent_corner_rate",
+                                         "vertex_normal_error_consistent_deg",
+                                         "vertex_normal_flip_rate_consistent",
+                                         "fallback_rate",
                                          "c0_gap",
                                          "c1_angle_deg",
                                          "crack_rate",
                                          "truth_distance"};
+  EXPECT_EQ(metricKeys(), keys);
   EXPECT_EQ(j.size(), keys.size());
   for (const std::string& key : keys) EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_TRUE(j.at("vertex_normal_flip_rate_consistent").is_null());
   EXPECT_EQ(j.at("c0_gap").get<double>(), 0.25);
   EXPECT_EQ(j.at("memory_bytes").get<size_t>(), 96u);
   const std::string table = metricsTable({m, m});
@@ -245,6 +252,79 @@ TEST(Metrics, JsonAndTableCarryEveryKey) {
   EXPECT_EQ(lines[1], lines[2]);
   EXPECT_NE(lines[1].find(" -"), std::string::npos);
   EXPECT_EQ(lines[1].rfind("flat", 0), 0u);
+  // Every key but "mesh" is a column of the table.
+  for (const std::string& key : keys)
+    EXPECT_EQ(lines[0].find(key) != std::string::npos, key != "mesh") << key;
+}
+
+TEST(Metrics, CsvFollowsTheKeysAndReadsBack) {
+  ModelMetrics m;
+  m.model = "nagata";
+  m.mesh = "a, \"quoted\" mesh.obj";
+  m.triangles = 7;
+  m.convertSeconds = 0.1;
+  m.vertexNormalErrorConsistentDeg = 12.5;
+  m.crackRate = 0.0625;
+  const CsvTable csv = parseCsv(metricsCsv({m}), "metrics.csv");
+  ASSERT_EQ(csv.rows.size(), 2u);
+  EXPECT_EQ(csv.rows[0], metricKeys());
+  const std::vector<std::string>& row = csv.rows[1];
+  ASSERT_EQ(row.size(), metricKeys().size());
+  auto field = [&](const std::string& key) {
+    return row[size_t(std::find(metricKeys().begin(), metricKeys().end(), key) -
+                      metricKeys().begin())];
+  };
+  EXPECT_EQ(field("mesh"), m.mesh);
+  EXPECT_EQ(field("triangles"), "7");
+  EXPECT_EQ(std::stod(field("convert_seconds")), 0.1);  // round-trips exactly
+  EXPECT_EQ(field("vertex_normal_error_consistent_deg"), "12.5");
+  EXPECT_EQ(field("vertex_normal_flip_rate_consistent"), "");  // null
+  EXPECT_EQ(field("crack_rate"), "0.0625");
+  EXPECT_EQ(field("truth_distance"), "");
+  EXPECT_EQ(csvValue(nlohmann::ordered_json(std::nan(""))), "");
+}
+
+// Every model on an icosphere with its analytic normals: every corner is consistent, so the
+// consistent-corner figures are the all-corner ones, and nothing falls back.
+TEST(Metrics, ConsistentFiguresEqualTheAllCornerOnesWhenEveryCornerIsConsistent) {
+  const BuiltinMesh sphere = makeBuiltin("icosphere", ShapeParams{2});
+  const auto mesh = std::make_shared<const TriangleMesh>(sphere.mesh);
+  AnalysisOptions options;
+  options.crack.lines = 500;
+  for (const std::string& name : modelNames()) {
+    const ModelMetrics m = analyzeNamedModel(name, mesh, "icosphere:2", sphere.truth, options);
+    EXPECT_EQ(m.inconsistentCornerRate, 0.0) << name;
+    ASSERT_TRUE(m.vertexNormalErrorConsistentDeg && m.vertexNormalFlipRateConsistent) << name;
+    EXPECT_EQ(*m.vertexNormalErrorConsistentDeg, m.vertexNormalErrorDeg) << name;
+    EXPECT_EQ(*m.vertexNormalFlipRateConsistent, m.vertexNormalFlipRate) << name;
+    EXPECT_EQ(m.fallbackRate, 0.0) << name;
+  }
+}
+
+TEST(Metrics, OneFlippedVertexNormalGivesKInconsistentCornersOf3T) {
+  TriangleMesh mesh = makeBuiltin("icosphere", ShapeParams{2}).mesh;
+  const uint32_t flipped = mesh.normalIndices[7][1];
+  mesh.normals[flipped] = -mesh.normals[flipped];
+  size_t k = 0;
+  for (const Tri& tri : mesh.normalIndices)
+    for (uint32_t i : tri) k += i == flipped;
+  const auto shared = std::make_shared<const TriangleMesh>(std::move(mesh));
+  const double expected = double(k) / double(3 * shared->triangleCount());
+  AnalysisOptions options;
+  options.crack.lines = 500;
+  for (const std::string& name : modelNames()) {
+    const ModelMetrics m = analyzeNamedModel(name, shared, "flipped", std::nullopt, options);
+    EXPECT_EQ(m.inconsistentCornerRate, expected) << name;
+    EXPECT_EQ(toJson(m).at("inconsistent_corner_rate").get<double>(), expected) << name;
+    ASSERT_TRUE(m.vertexNormalErrorConsistentDeg && m.vertexNormalFlipRateConsistent) << name;
+    EXPECT_LE(*m.vertexNormalErrorConsistentDeg, m.vertexNormalErrorDeg) << name;
+  }
+  // The facets keep facing outwards: they fold at the k inconsistent corners and nowhere else.
+  const ModelMetrics flat = analyzeNamedModel("flat", shared, "flipped", std::nullopt, options);
+  EXPECT_EQ(flat.vertexNormalFlipRate, expected);
+  EXPECT_EQ(*flat.vertexNormalFlipRateConsistent, 0.0);
+  EXPECT_GT(flat.vertexNormalErrorDeg, 90.0);
+  EXPECT_LT(*flat.vertexNormalErrorConsistentDeg, 90.0);
 }
 
 }  // namespace

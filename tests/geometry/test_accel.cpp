@@ -3,10 +3,10 @@
 #include <algorithm>
 
 #include "fixtures/sphere_patches.h"
-#include "quadtri/math/error.h"
-#include "quadtri/mesh/shapes.h"
 #include "quadtri/geometry/accel.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/shapes.h"
 
 namespace quadtri {
 namespace {

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -81,9 +82,11 @@ TEST(Shapes, BuiltinSpecParsing) {
 
 class MeshIo : public ::testing::Test {
  protected:
-  std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      ("quadtri-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  // One folder per process and test: ctest runs tests as parallel processes, and a folder
+  // shared between them would be removed under another test's feet.
+  std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                              ("quadtri-test-" + std::to_string(::getpid()) + "-" +
+                               ::testing::UnitTest::GetInstance()->current_test_info()->name());
   void SetUp() override { std::filesystem::create_directories(dir); }
   void TearDown() override { std::filesystem::remove_all(dir); }
 };

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "quadtri/geometry/rng.h"
 #include "quadtri/render/bsdf/bsdf.h"
 #include "render/chi2.h"
-#include "quadtri/geometry/rng.h"
 
 namespace quadtri::testing {
 

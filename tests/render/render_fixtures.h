@@ -8,12 +8,12 @@
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/render/bsdf/diffuse.h"
-#include "render/chi2.h"
 #include "quadtri/render/integrator/integrator.h"
 #include "quadtri/render/render_scene.h"
 #include "quadtri/render/renderer.h"
 #include "quadtri/render/sampling/warp.h"
 #include "quadtri/surface/model.h"
+#include "render/chi2.h"
 
 namespace quadtri::testing {
 

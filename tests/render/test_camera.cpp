@@ -6,9 +6,9 @@
 
 #include "quadtri/math/error.h"
 #include "quadtri/render/camera.h"
-#include "render/chi2.h"
 #include "quadtri/render/filter.h"
 #include "quadtri/render/image_io.h"
+#include "render/chi2.h"
 #include "render_fixtures.h"
 
 namespace quadtri::testing {
@@ -93,6 +93,25 @@ TEST(ReconstructionFilter, BoxCoversThePixel) {
       [&]() -> std::optional<Vec2> { return (filter.sampleOffset(rng) + Vec2(0.5, 0.5)).eval(); },
       [](const Vec2&) { return 1.0; });
   EXPECT_GT(r.pValue, 1e-3) << r.report;
+}
+
+TEST(ReconstructionFilter, TentOffsetsFollowTheTriangle) {
+  ReconstructionFilter filter;
+  filter.kind = ReconstructionFilter::Kind::Tent;
+  filter.tentRadius = 1.5;
+  Pcg32 rng(9);
+  // Offsets in [−r, r] mapped to [0, 1]: the triangle density 2(1 − 2|t − ½|) per axis.
+  const Chi2Result r = chi2Test(
+      16, 16, 200000,
+      [&]() -> std::optional<Vec2> {
+        return (filter.sampleOffset(rng) / (2.0 * filter.tentRadius) + Vec2(0.5, 0.5)).eval();
+      },
+      [](const Vec2& p) {
+        const auto tent = [](double t) { return 2.0 * (1.0 - 2.0 * std::abs(t - 0.5)); };
+        return tent(p.x()) * tent(p.y());
+      });
+  EXPECT_GT(r.pValue, 1e-3) << r.report;
+  EXPECT_DOUBLE_EQ(filter.radius(), 1.5);
 }
 
 TEST(ImageIo, SrgbTransferFunction) {

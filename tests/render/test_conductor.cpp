@@ -5,8 +5,8 @@
 #include "quadtri/math/error.h"
 #include "quadtri/render/bsdf/conductor.h"
 #include "quadtri/render/bsdf/fresnel.h"
-#include "render/bsdf_checks.h"
 #include "quadtri/render/sampling/frame.h"
+#include "render/bsdf_checks.h"
 
 namespace quadtri {
 namespace {

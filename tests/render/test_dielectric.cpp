@@ -6,9 +6,9 @@
 #include "quadtri/render/bsdf/dielectric.h"
 #include "quadtri/render/bsdf/fresnel.h"
 #include "quadtri/render/bsdf/ior_tables.h"
-#include "render/bsdf_checks.h"
 #include "quadtri/render/sampling/frame.h"
 #include "quadtri/render/sampling/warp.h"
+#include "render/bsdf_checks.h"
 
 namespace quadtri {
 namespace {

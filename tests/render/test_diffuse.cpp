@@ -2,8 +2,8 @@
 
 #include "quadtri/math/error.h"
 #include "quadtri/render/bsdf/diffuse.h"
-#include "render/bsdf_checks.h"
 #include "quadtri/render/sampling/warp.h"
+#include "render/bsdf_checks.h"
 
 namespace quadtri {
 namespace {

@@ -2,14 +2,14 @@
 // the solid angle the light subtends); light selection in proportion to power.
 #include <gtest/gtest.h>
 
+#include "quadtri/geometry/rng.h"
 #include "quadtri/math/error.h"
-#include "render/chi2.h"
 #include "quadtri/render/emitter/constant_emitter.h"
 #include "quadtri/render/emitter/light_sampler.h"
 #include "quadtri/render/emitter/mesh_area_emitter.h"
 #include "quadtri/render/emitter/point_emitter.h"
 #include "quadtri/render/emitter/sphere_area_emitter.h"
-#include "quadtri/geometry/rng.h"
+#include "render/chi2.h"
 
 namespace quadtri::testing {
 namespace {

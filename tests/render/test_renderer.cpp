@@ -86,6 +86,11 @@ TEST(Renderer, AdaptiveSamplingStopsWhereThePixelIsKnown) {
   EXPECT_LT(r.stats.meanSamplesPerPixel(), 256.0);
   EXPECT_EQ(r.stats.finishedPixels, 256u);
   EXPECT_FLOAT_EQ(float(r.image.at(0, 0)[0]), 0.5f);
+  // The least and most samples a pixel got: the minimum (background) and more (the sphere).
+  EXPECT_EQ(r.stats.minPixelSamples, 8u);
+  EXPECT_GT(r.stats.maxPixelSamples, 8u);
+  EXPECT_LE(r.stats.maxPixelSamples, 256u);
+  EXPECT_FALSE(r.stats.stopped);
 }
 
 TEST(Renderer, CancelLeavesPixelsBlackAndCountsThem) {
@@ -97,7 +102,24 @@ TEST(Renderer, CancelLeavesPixelsBlackAndCountsThem) {
   const RenderResult r = render(scene, PathIntegrator({}), options);
   EXPECT_EQ(r.stats.unfinishedPixels, 256u);
   EXPECT_EQ(r.stats.samples, 0u);
+  EXPECT_TRUE(r.stats.stopped);
+  EXPECT_EQ(r.stats.minPixelSamples, 0u);
+  EXPECT_EQ(r.stats.maxPixelSamples, 0u);
   for (const Color& c : r.image.pixels) EXPECT_TRUE(isBlack(c));
+  // Uncancelled, every pixel gets the fixed count.
+  cancel = false;
+  options.samplesPerPixel = 3;
+  const RenderResult full = render(scene, PathIntegrator({}), options);
+  EXPECT_FALSE(full.stats.stopped);
+  EXPECT_EQ(full.stats.minPixelSamples, 3u);
+  EXPECT_EQ(full.stats.maxPixelSamples, 3u);
+}
+
+TEST(Renderer, ImageBytesCountTheFilmAndItsOutputCopies) {
+  // 24-byte double pixels, 12-byte float and 3-byte sRGB copies, 8 bytes of bookkeeping.
+  EXPECT_EQ(renderImageBytes(32, 32), 32u * 32u * 47u);
+  EXPECT_EQ(renderImageBytes(32768, 32768), uint64_t(32768) * 32768 * 47);
+  EXPECT_EQ(renderImageBytes(-1, 5), 0u);
 }
 
 TEST(Renderer, RejectsBadOptions) {

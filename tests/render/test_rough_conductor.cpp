@@ -5,8 +5,8 @@
 #include "quadtri/math/error.h"
 #include "quadtri/render/bsdf/ggx.h"
 #include "quadtri/render/bsdf/rough_conductor.h"
-#include "render/bsdf_checks.h"
 #include "quadtri/render/sampling/warp.h"
+#include "render/bsdf_checks.h"
 
 namespace quadtri {
 namespace {

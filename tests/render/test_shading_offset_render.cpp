@@ -4,8 +4,8 @@
 
 #include "quadtri/render/integrator/direct_integrator.h"
 #include "quadtri/render/integrator/path_integrator.h"
-#include "render_fixtures.h"
 #include "quadtri/surface/shading_offset.h"
+#include "render_fixtures.h"
 
 namespace quadtri::testing {
 namespace {

@@ -5,8 +5,8 @@
 #include "quadtri/render/bsdf/diffuse.h"
 #include "quadtri/render/bsdf/rough_conductor.h"
 #include "quadtri/render/bsdf/twosided.h"
-#include "render/bsdf_checks.h"
 #include "quadtri/render/sampling/warp.h"
+#include "render/bsdf_checks.h"
 
 namespace quadtri {
 namespace {

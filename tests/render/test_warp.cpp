@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "render/chi2.h"
-#include "quadtri/render/sampling/frame.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/render/sampling/frame.h"
 #include "quadtri/render/sampling/warp.h"
+#include "render/chi2.h"
 
 namespace quadtri {
 namespace {

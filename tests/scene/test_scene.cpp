@@ -455,8 +455,7 @@ TEST(SceneErrors, EachNamesFileLineAndOffender) {
   };
   for (const ErrorCase& c : cases) {
     // The scene "lives" in tests/, so that a mesh filename can name an existing file.
-    const std::string message =
-        errorOf(c.xml, fs::path(QUADTRI_TEST_DIR) / "test.xml");
+    const std::string message = errorOf(c.xml, fs::path(QUADTRI_TEST_DIR) / "test.xml");
     // Messages start with the file's path; compare from its name on.
     const size_t at = message.find(c.where);
     EXPECT_NE(at, std::string::npos) << c.what << ": " << message;

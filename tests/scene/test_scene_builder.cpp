@@ -80,6 +80,34 @@ TEST(SceneBuilder, ModelOverrideAppliesToMeshesOnly) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(SceneBuilder, WarnsOnceForEachMeshWhoseModelFallsBack) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "quadtri_scene_warn";
+  std::filesystem::create_directories(dir);
+  // Two triangles facing +z with equal normals, one corner lifted: no quadratic edge through
+  // the lifted corner can be tangent at both ends, so quadric-param gives up both patches.
+  TriangleMesh step;
+  step.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0.3), Vec3(0, 1, 0)};
+  step.triangles = {{0, 1, 2}, {0, 2, 3}};
+  step.normals = {Vec3::UnitZ()};
+  step.normalIndices = {{0, 0, 0}, {0, 0, 0}};
+  saveMesh(step, dir / "step.obj");
+  saveMesh(makeBuiltin("icosahedron").mesh, dir / "ico.obj");
+  const std::string body = std::string(kSensor) + R"(
+    <shape type="obj"><string name="filename" value="step.obj"/><string name="model" value="quadric-param"/></shape>
+    <shape type="obj"><string name="filename" value="ico.obj"/><string name="model" value="quadric-param"/></shape>
+    <shape type="rectangle"/>)";
+  const BuiltScene b = build(body, dir / "s.xml");
+  ASSERT_EQ(b.warnings.size(), 1u);
+  const std::string& w = b.warnings[0];
+  EXPECT_EQ(w.rfind((dir / "s.xml").string() + ":", 0), 0u) << w;
+  EXPECT_NE(w.find((dir / "step.obj").string() + ": quadric-param folds at "), std::string::npos)
+      << w;
+  EXPECT_NE(w.find(" and falls back on 100% of patches (2 of 2)"), std::string::npos) << w;
+  // shading keeps the triangles: nothing to warn about.
+  EXPECT_TRUE(build(body, dir / "s.xml", std::string("shading")).warnings.empty());
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SceneBuilder, ShadingOffsetFromTheSceneFileLiftsRayOrigins) {
   // An icosahedron scaled by 2 with the sphere's normals: its hits lift outwards in world
   // space; the rectangle and the `shading` override do not lift.

@@ -89,7 +89,7 @@ TEST(EdgesModel, Eq42MissesTheEdgeCurveOnTheIcosahedron) {
   // edge midpoint's radius, and two bulges of a face differ by |d|·(L/2)/|m|. At s = ½ the
   // boundary misses its curve by half that: (|d| L / (4|m|)) / L = 9.55% of the edge. The
   // difference is partly along the edge, so the distance to the nearest curve point is smaller:
-  // 8.25%, the "8%" DESIGN.md quotes.
+  // 8.25%, the "8%" docs/DESIGN.md quotes.
   const auto mesh = builtin("icosahedron");
   const double L = (mesh->corner(0, 1) - mesh->corner(0, 0)).norm();
   const double m = std::sqrt(1.0 - 0.25 * L * L);
@@ -153,7 +153,7 @@ double maxRadialDeviation(const SurfaceModel& model) {
 }
 
 TEST(EdgesModel, TransfiniteBulgesOnTheIcosahedron) {
-  // DESIGN.md: 6.4% of the radius (the cubic blend overshoots the sphere).
+  // docs/DESIGN.md: 6.4% of the radius (the cubic blend overshoots the sphere).
   const EdgesModel model(builtin("icosahedron"), EdgesModel::Blend::Transfinite);
   EXPECT_NEAR(maxRadialDeviation(model), 0.064, 0.001);
 }

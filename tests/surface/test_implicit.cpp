@@ -41,7 +41,7 @@ Vec3 parametricNormal(const ImplicitModel& model, size_t t, double u, double v) 
 }
 
 TEST(ImplicitModel, IcosahedronFitIsNearButNotTheCircumscribedSphere) {
-  // DESIGN.md §3: on the standard icosahedron (circumradius 1.902) the thesis' least squares
+  // docs/DESIGN.md §3: on the standard icosahedron (circumradius 1.902) the thesis' least squares
   // gives J/A = -3.13, where the circumscribed sphere x²+y²+z² - r² has -r² = -3.62. Face 0
   // (the one whose quadric has A = B = C) is the one compared.
   const ImplicitModel model(scaledIcosahedron(kStandardRadius));
@@ -96,7 +96,7 @@ std::pair<double, double> cornerErrors(const ImplicitModel& model) {
 TEST(ImplicitModel, CornersLieNearTheQuadricWithNearlyTheShadingNormal) {
   // On the icosahedron the 12 homogeneous rows are consistent, so corners and normals are
   // exact to round-off. On the ellipsoid they conflict and the least squares holds neither
-  // exactly (DESIGN.md §3); measured there: distance 0.0018 of an edge, angle 0.053°.
+  // exactly (docs/DESIGN.md §3); measured there: distance 0.0018 of an edge, angle 0.053°.
   const auto [icoDistance, icoAngle] =
       cornerErrors(ImplicitModel(scaledIcosahedron(kStandardRadius)));
   EXPECT_LT(icoDistance, 1e-12);

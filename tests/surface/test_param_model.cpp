@@ -38,7 +38,7 @@ TEST(ParamModel, PatchJsonCoefficientsReproduceTheSurface) {
 }
 
 TEST(ParamModel, StaysCloseToTheSphereOnTheIcosahedron) {
-  // DESIGN.md: radial deviation 1.3% of the radius on an icosahedron.
+  // docs/DESIGN.md: radial deviation 1.3% of the radius on an icosahedron.
   const ParamModel model(std::make_shared<const TriangleMesh>(makeBuiltin("icosahedron").mesh));
   double worst = 0.0;
   for (size_t t = 0; t < model.patchCount(); ++t)

@@ -6,9 +6,9 @@
 #include "quadtri/analysis/crack_rate.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
-#include "surface/robust_fixtures.h"
 #include "quadtri/surface/robust_implicit_model.h"
 #include "quadtri/surface/robust_quadric_fit.h"
+#include "surface/robust_fixtures.h"
 
 namespace quadtri {
 namespace {

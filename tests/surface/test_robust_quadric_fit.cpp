@@ -5,9 +5,9 @@
 
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
-#include "surface/robust_fixtures.h"
 #include "quadtri/surface/robust_implicit_model.h"
 #include "quadtri/surface/robust_quadric_fit.h"
+#include "surface/robust_fixtures.h"
 
 namespace quadtri {
 namespace {

@@ -151,7 +151,7 @@ TEST(ThesisSystems, ClosedFormSolvesTheEdgeCurve27x27System) {
 }
 
 TEST(ThesisSystems, IcosahedronFaceAgreesToRoundoff) {
-  // DESIGN.md measured 1e-15 between the 18×18 solution and the closed form on this face.
+  // docs/DESIGN.md measured 1e-15 between the 18×18 solution and the closed form on this face.
   const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
   test::TriangleData d;
   d.v = {Vec3(0, 1, phi).normalized(), Vec3(-1, phi, 0).normalized(), Vec3(1, phi, 0).normalized()};

@@ -1,4 +1,4 @@
-// Convergence to the true surface under refinement: truth_distance (DESIGN.md §4) of every
+// Convergence to the true surface under refinement: truth_distance (docs/DESIGN.md §4) of every
 // model on a sequence of ever finer meshes of one built-in shape, and the observed order.
 #pragma once
 
@@ -35,7 +35,7 @@ struct ConvergenceOptions {
   int truthLevel = 12;  ///< lattice level of truthDistance
   /// > 0: a shape's refinement stops at the first level with more triangles than this.
   size_t maxTriangles = 0;
-  NormalSource normals = NormalSource::File;
+  NormalOptions normals;  ///< File: the shapes' analytic normals
   /// Called after each sample (progress); may be empty.
   std::function<void(const ConvergenceSample&)> onSample;
   /// Called when a model fails on a level (the sample is kept without a distance).

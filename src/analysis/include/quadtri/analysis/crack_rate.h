@@ -1,4 +1,4 @@
-// Crack rate (DESIGN.md §4): how often a random line crosses a closed surface an odd number of
+// Crack rate (docs/DESIGN.md §4): how often a random line crosses a closed surface an odd number of
 // times. A watertight surface is crossed an even number of times by every line.
 #pragma once
 

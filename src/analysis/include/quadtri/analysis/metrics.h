@@ -1,7 +1,9 @@
-// How well a model meets the four constraints and what it costs (DESIGN.md §4): free functions
+// How well a model meets the four constraints and what it costs (docs/DESIGN.md §4): free functions
 // over a SurfaceModel, and the per-model record that `quadtri analyze` prints.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -10,6 +12,7 @@
 #include "quadtri/analysis/crack_rate.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
+#include "quadtri/surface/corner_stats.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/tessellate.h"
 
@@ -28,6 +31,10 @@ double vertexNormalErrorDeg(const SurfaceModel& model);
 /// e.g. a quadratic edge whose end tangents must reverse because the normals lean the same way
 /// along it (an inflection), or a shading normal more than 90° from its own face's normal.
 double vertexNormalFlipRate(const SurfaceModel& model);
+
+/// cornerStats (corner_stats.h: consistent corners, folds, normal errors) of every patch
+/// corner; throws Error naming the first patch whose corner is not finite.
+CornerStats checkedCornerStats(const SurfaceModel& model);
 
 /// Continuity across shared edges (constraints 3 and 4).
 struct EdgeContinuity {
@@ -56,6 +63,13 @@ struct ModelMetrics {
   double vertexPositionError = 0;
   double vertexNormalErrorDeg = 0;
   double vertexNormalFlipRate = 0;
+  /// Share of corners whose triangle faces away from their shading normal (CornerStats).
+  double inconsistentCornerRate = 0;
+  /// vertexNormalErrorDeg and vertexNormalFlipRate over consistent corners only; nullopt when
+  /// no corner is consistent.
+  std::optional<double> vertexNormalErrorConsistentDeg, vertexNormalFlipRateConsistent;
+  /// Share of patches that fell back (SurfaceModel::fellBack).
+  double fallbackRate = 0;
   std::optional<double> c0Gap, c1AngleDeg, crackRate, truthDistance;
 };
 
@@ -73,10 +87,33 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
                           const std::optional<AnalyticSurface>& truth, double convertSeconds,
                           const AnalysisOptions& options = {});
 
-/// The DESIGN.md §4 keys plus "model" and "mesh", in the table's order.
+/// Converts `mesh` with the named model (makeModel), timing the conversion, and measures it
+/// with analyzeModel; `inspect`, when given, then sees the model (heatmaps, ...). What
+/// `quadtri analyze` and `quadtri study` measure, one model at a time.
+ModelMetrics analyzeNamedModel(const std::string& name,
+                               const std::shared_ptr<const TriangleMesh>& mesh,
+                               const std::string& meshName,
+                               const std::optional<AnalyticSurface>& truth,
+                               const AnalysisOptions& options = {},
+                               const std::function<void(const SurfaceModel&)>& inspect = {});
+
+/// Every key of toJson, in order: "model", "mesh", then the docs/DESIGN.md §4 keys and the corner
+/// and fallback keys. The one list the table, the JSON and every CSV follow.
+const std::vector<std::string>& metricKeys();
+
+/// One JSON value per metricKeys() key; null where a key does not apply.
 nlohmann::ordered_json toJson(const ModelMetrics& metrics);
 
-/// A text table: one row per model, one column per key, null as "-", columns aligned.
+/// A text table: one row per model, one column per key but "mesh", null as "-", columns
+/// aligned.
 std::string metricsTable(const std::vector<ModelMetrics>& rows);
+
+/// A CSV field for one toJson value: strings quoted where needed (RFC 4180), numbers as JSON
+/// writes them (the shortest text that reads back to the same double), null and non-finite
+/// numbers empty.
+std::string csvValue(const nlohmann::ordered_json& value);
+
+/// CSV: a header of metricKeys(), one row per model.
+std::string metricsCsv(const std::vector<ModelMetrics>& rows);
 
 }  // namespace quadtri

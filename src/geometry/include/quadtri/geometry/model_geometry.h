@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "quadtri/mesh/triangle_mesh.h"
 #include "quadtri/geometry/accel.h"
+#include "quadtri/mesh/triangle_mesh.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/quadric_patch.h"
 #include "quadtri/surface/tessellate.h"

@@ -14,6 +14,11 @@ namespace quadtri {
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
+/// Removes every temporary file a writeAtomically call has open at this moment, in any thread.
+/// Async-signal-safe (it only reads a fixed table and calls unlink), for a signal handler that
+/// ends the process at once and must leave no temporary file behind.
+void removeTemporaryFilesNow() noexcept;
+
 /// Writes `text` to `path` atomically.
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
 

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "quadtri/mesh/mesh_io_check.h"
 #include "quadtri/mesh/normals.h"
 #include "quadtri/mesh/triangle_mesh.h"
 
@@ -10,9 +11,13 @@ namespace quadtri {
 
 /// Loads every mesh in the file as one triangle mesh. Positions are welded by exact equality
 /// so adjacency is known; per-corner normals are kept as the file gives them (STL facet
-/// normals are not shading normals and are ignored). When the file has no normals, or `source`
-/// is not File, vertex normals are computed. Throws Error naming the file on failure.
-TriangleMesh loadMesh(const std::filesystem::path& path, NormalSource source = NormalSource::File);
+/// normals are not shading normals and are ignored). `normals` picks the shading normals
+/// (applyNormals): with File, a file without normals gets angle-weighted normals split at the
+/// crease angle. Throws Error naming the file on failure. Before Assimp reads the file,
+/// inspectMeshFile checks its header's counts against its size and, given a budget,
+/// chargeMeshFile refuses a mesh whose load and model would exceed it.
+TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals = {},
+                      MemoryBudget* budget = nullptr);
 
 /// Writes OBJ or PLY (binary little-endian) by extension, with normals when the mesh has them.
 /// The file appears atomically.
@@ -25,8 +30,11 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path);
 namespace quadtri {
 
 /// A mesh named on the command line: an existing file, or a built-in shape spec such as
-/// `icosphere:3` (shapes.h). For a file, `source` picks the normals; for a built-in shape,
-/// File keeps its analytic normals and Average/Angle recompute them.
-BuiltinMesh loadMeshSpec(const std::string& spec, NormalSource source = NormalSource::File);
+/// `icosphere:3` (shapes.h). For a file, `normals` picks the normals as for loadMesh; for a
+/// built-in shape, File keeps its analytic normals and Average/Angle recompute them. A budget is
+/// charged as by loadMesh; a built-in shape, built first, is charged its model's bytes per
+/// triangle.
+BuiltinMesh loadMeshSpec(const std::string& spec, const NormalOptions& normals = {},
+                         MemoryBudget* budget = nullptr);
 
 }  // namespace quadtri

@@ -11,26 +11,41 @@
 
 namespace quadtri {
 
-/// Mitsuba 3's `box` (radius 0.5: uniform over the pixel) or `gaussian` (per-axis normal of
-/// standard deviation `stddev`, truncated at radius 4·stddev) reconstruction filter.
+/// Mitsuba 3's `box` (radius 0.5: uniform over the pixel), `tent` (per-axis triangle
+/// 1 − |x|/r of radius r, default 1) or `gaussian` (per-axis normal of standard deviation
+/// `stddev`, truncated at radius 4·stddev) reconstruction filter.
 struct ReconstructionFilter {
-  enum class Kind { Box, Gaussian } kind = Kind::Gaussian;
-  double stddev = 0.5;  ///< gaussian only
+  enum class Kind { Box, Gaussian, Tent } kind = Kind::Gaussian;
+  double stddev = 0.5;      ///< gaussian only
+  double tentRadius = 1.0;  ///< tent only
 
   /// The filter's support half-width in pixels.
-  double radius() const { return kind == Kind::Box ? 0.5 : 4.0 * stddev; }
+  double radius() const {
+    return kind == Kind::Box ? 0.5 : kind == Kind::Tent ? tentRadius : 4.0 * stddev;
+  }
   /// Offset from the pixel centre distributed as the normalised filter, from two uniforms and
   /// (for the gaussian's rejection of the truncated tails) a generator of more.
   template <typename Rng>
   Vec2 sampleOffset(Rng& rng) const;
   std::string toString() const {
-    return kind == Kind::Box ? "box" : "gaussian(stddev=" + std::to_string(stddev) + ")";
+    if (kind == Kind::Box) return "box";
+    if (kind == Kind::Tent) return "tent(radius=" + std::to_string(tentRadius) + ")";
+    return "gaussian(stddev=" + std::to_string(stddev) + ")";
   }
 };
 
 template <typename Rng>
 Vec2 ReconstructionFilter::sampleOffset(Rng& rng) const {
   if (kind == Kind::Box) return rng.next2D() - Vec2(0.5, 0.5);
+  if (kind == Kind::Tent) {
+    // Inverse CDF of the triangle density on [−r, r]: F⁻¹(u) = r(√(2u) − 1) below the
+    // median, r(1 − √(2 − 2u)) above it.
+    const Vec2 u = rng.next2D();
+    const auto tent = [&](double v) {
+      return tentRadius * (v < 0.5 ? std::sqrt(2.0 * v) - 1.0 : 1.0 - std::sqrt(2.0 - 2.0 * v));
+    };
+    return Vec2(tent(u.x()), tent(u.y()));
+  }
   // Box–Muller gives two independent normals; a component beyond the radius is redrawn
   // (probability 6e-5 at 4σ), which samples the truncated normal exactly.
   const double r = radius();

@@ -45,6 +45,8 @@ struct SurfaceInteraction {
   Vec3 liftedP;
   bool lifted = false;
   const GeometryRecord* geometry = nullptr;
+  uint32_t geometryId = ~0u;  ///< the id addModel returned for the geometry hit
+  uint32_t primitive = ~0u;   ///< its triangle or patch (RayHit::primitive)
 };
 
 class RenderScene {
@@ -57,10 +59,11 @@ class RenderScene {
   /// Adds a world-space model as the renderer draws it: its triangles (flat: face normals;
   /// shading: interpolated normals), its tessellation (interpolated surface normals) or its
   /// quadric patches (gradient normals). With `areaRadiance`, the geometry is an area light;
-  /// implicit models cannot be (Error naming `name`).
-  void addModel(std::shared_ptr<const SurfaceModel> model, const Tessellation& tessellation,
-                std::shared_ptr<const Bsdf> bsdf, const std::optional<Color>& areaRadiance,
-                const std::string& name);
+  /// implicit models cannot be (Error naming `name`). Returns the geometry's id
+  /// (SurfaceInteraction::geometryId of its hits).
+  uint32_t addModel(std::shared_ptr<const SurfaceModel> model, const Tessellation& tessellation,
+                    std::shared_ptr<const Bsdf> bsdf, const std::optional<Color>& areaRadiance,
+                    const std::string& name);
   /// Adds the analytic sphere |x − center| = radius mapped by `toWorld` (a quadric patch with no
   /// clip planes: an ellipsoid under non-uniform scale). An emitting sphere needs a similarity
   /// transform so it stays a sphere for cone sampling (Error otherwise).

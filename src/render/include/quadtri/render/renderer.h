@@ -3,10 +3,14 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "quadtri/render/filter.h"
 #include "quadtri/render/image_io.h"
 #include "quadtri/render/integrator/integrator.h"
+#include "quadtri/render/render_state.h"
 
 namespace quadtri {
 
@@ -20,6 +24,15 @@ struct RenderOptions {
   ReconstructionFilter filter;
   const std::atomic<bool>* cancel = nullptr;  ///< when set to true, stop as after the time limit
   bool progress = false;                      ///< progress bar with ETA on stderr
+  /// Pixels with samples > 0 in this state are taken as they are and not rendered again. Its
+  /// size must match the camera's; its key is the caller's to check (renderKey).
+  const RenderState* resume = nullptr;
+  /// When both are set, `checkpoint` is called every checkpointSeconds, from a thread of its
+  /// own while the render runs, with the pixels finished so far (key: stateKey). If it throws,
+  /// checkpoints stop and RenderResult::checkpointError says why; the render goes on.
+  double checkpointSeconds = 0;
+  std::function<void(const RenderState&)> checkpoint;
+  uint64_t stateKey = 0;
 };
 
 struct RenderStats {
@@ -29,6 +42,10 @@ struct RenderStats {
   size_t finishedPixels = 0;
   size_t unfinishedPixels = 0;  ///< left black by the time limit or a cancel
   size_t nonFiniteSamples = 0;  ///< NaN/Inf estimates dropped (counted as zero radiance)
+  uint64_t minPixelSamples = 0, maxPixelSamples = 0;  ///< over the finished pixels (0 if none)
+  size_t resumedPixels = 0;  ///< finished pixels taken from RenderOptions::resume
+  size_t checkpoints = 0;    ///< checkpoint calls that returned
+  bool stopped = false;      ///< the cancel flag or the time limit stopped it before every pixel
   /// Mean samples per finished pixel (differs from the fixed count only when adaptive).
   double meanSamplesPerPixel() const;
 };
@@ -36,7 +53,15 @@ struct RenderStats {
 struct RenderResult {
   Image image;
   RenderStats stats;
+  std::vector<uint32_t> pixelSamples;  ///< per pixel: the samples it got, 0 when not rendered
+  std::string checkpointError;         ///< why checkpoints stopped, when one threw
+  /// The state to resume this render from (pixels with pixelSamples > 0 are finished).
+  RenderState state(uint64_t key) const;
 };
+
+/// Bytes of rendering and writing a width × height image: the film's double-precision pixels,
+/// the float and 8-bit copies that writeImage encodes, and the per-pixel bookkeeping.
+uint64_t renderImageBytes(int width, int height);
 
 /// Renders scene.camera()'s image. Each pixel has its own PCG32 stream, seeded from
 /// (seed, pixel index), and its film positions come from the reconstruction filter, so the

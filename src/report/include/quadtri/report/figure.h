@@ -61,7 +61,10 @@ struct FigureRequest {
   std::function<std::filesystem::path(const std::string& shape)> sceneFor;
   SceneDefines defines;
   std::optional<int> samplesPerPixel;  ///< overrides the scene's sampler when set
-  int threads = 0;                     ///< 0: every hardware thread
+  /// Override every obj/ply shape's normals and crease angle when set (overrideNormals).
+  std::optional<NormalSource> normals;
+  std::optional<double> creaseAngleDeg;
+  int threads = 0;  ///< 0: every hardware thread
   /// Renders per cell. A shape's models are built together and rendered in rounds, each round
   /// rendering every model once in an order rotated by one per round, so that a drift of the
   /// machine's load hits every model alike.

@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "quadtri/render/integrator/integrator.h"
 #include "quadtri/render/render_scene.h"
@@ -18,14 +19,23 @@ struct BuiltScene {
   std::shared_ptr<const Integrator> integrator;
   RenderOptions options;      ///< samplesPerPixel, seed and filter from the description
   size_t inputTriangles = 0;  ///< triangles of the obj/ply meshes before any model
+  /// One line per obj/ply shape whose model folds or falls back more than the conversion
+  /// warning allows (conversionWarning, corner_stats.h), naming the shape's element.
+  std::vector<std::string> warnings;
 };
 
-/// Builds every shape, BSDF and emitter. obj/ply meshes are loaded, placed by to_world
+/// Builds every shape, BSDF and emitter. obj/ply meshes are loaded with their `normals`
+/// (ShapeDesc::normals: a file without normals gets them split at the crease angle), placed by
+/// to_world
 /// (positions by the matrix, normals by its inverse transpose; a mirroring matrix reverses the
 /// winding so the face normals keep agreeing with the shading normals) and converted by their
 /// model, or by `modelOverride` when given; rectangles and cubes are `flat` triangle meshes;
-/// spheres are analytic quadrics. Errors name the XML element's FILE:LINE.
+/// spheres are analytic quadrics. Errors name the XML element's FILE:LINE. With maxMemoryBytes
+/// (0: no limit), the image (renderImageBytes) and every mesh file with its model
+/// (loadMesh's MemoryBudget, modelBytesPerTriangle for rendering) are charged against it before
+/// they are built, and the first that would exceed it is refused with the estimate.
 BuiltScene buildScene(const SceneDescription& description,
-                      const std::optional<std::string>& modelOverride = std::nullopt);
+                      const std::optional<std::string>& modelOverride = std::nullopt,
+                      uint64_t maxMemoryBytes = 0);
 
 }  // namespace quadtri

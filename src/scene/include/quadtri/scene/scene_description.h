@@ -1,4 +1,4 @@
-// A scene file's content as validated, typed values (DESIGN.md §5): what the renderer is built
+// A scene file's content as validated, typed values (docs/DESIGN.md §5): what the renderer is built
 // from. No rendering objects live here; every record keeps the "FILE:LINE" it came from so that
 // later stages can name it in their errors.
 #pragma once
@@ -10,23 +10,29 @@
 #include <variant>
 #include <vector>
 
-#include "quadtri/math/vec.h"
 #include "quadtri/math/color.h"
+#include "quadtri/math/vec.h"
+#include "quadtri/mesh/normals.h"
 #include "quadtri/render/camera.h"
 
 namespace quadtri {
 
-/// Pixel reconstruction filter: box (one pixel wide) or Gaussian of standard deviation stddev
-/// pixels (Mitsuba's default, stddev 0.5, truncated at 4 stddev).
+/// Pixel reconstruction filter: box (one pixel wide), tent of radius `radius` pixels (default
+/// 1) or Gaussian of standard deviation stddev pixels (Mitsuba's default, stddev 0.5,
+/// truncated at 4 stddev).
 struct FilterDesc {
-  enum class Type { Box, Gaussian } type = Type::Gaussian;
+  enum class Type { Box, Gaussian, Tent } type = Type::Gaussian;
   double stddev = 0.5;
+  double radius = 1.0;
 };
 
 /// hdrfilm: image size in pixels and its reconstruction filter.
 struct FilmDesc {
   int width = 768;
   int height = 576;
+  /// crop_offset_x/y, crop_width/height: the window of the film that is rendered (the whole
+  /// film by default); the image has the window's size.
+  int cropX = 0, cropY = 0, cropWidth = 0, cropHeight = 0;
   FilterDesc filter;
   std::string location;
 };
@@ -46,6 +52,9 @@ struct SensorDesc {
   FovAxis fovAxis = FovAxis::X;
   double nearClip = 1e-2;
   double farClip = 1e4;
+  /// principal_point_offset_x/y: the optical axis' offset from the film's centre, in units
+  /// of the film's width and height.
+  Vec2 principalPointOffset = Vec2::Zero();
   FilmDesc film;
   SamplerDesc sampler;
   std::string location;
@@ -114,6 +123,9 @@ struct ShapeDesc {
   std::string model = "shading";   ///< obj/ply: a name from modelNames()
   /// obj/ply: "N" or "thesis" for Tessellation::parse; empty for the default.
   std::string tessellation;
+  /// obj/ply: the shading normals (`normals`: file, average or angle; `crease_angle` in
+  /// degrees, for normals computed angle-weighted: a file without normals, or `angle`).
+  NormalOptions normals;
   bool faceNormals = false;
   bool flipNormals = false;
   Mat4 toWorld = Mat4::Identity();
@@ -132,12 +144,20 @@ struct SceneDescription {
   std::vector<ShapeDesc> shapes;
   /// Names of the file's <default> elements (the parameters -D is meant to override).
   std::vector<std::string> defaultNames;
+  /// "FILE:LINE: ..." for every property accepted without effect on quadtri's image (for
+  /// example hdrfilm's pixel_format): the CLI prints them as notes.
+  std::vector<std::string> notes;
 };
 
 /// Sets the samples per pixel (`render --spp`): the sampler's sample_count and, for an adaptive
 /// integrator, its cap per pixel (min_samples lowered to it where needed). Throws Error below 1,
 /// or below 2 for an adaptive integrator.
 void overrideSamplesPerPixel(SceneDescription& scene, int samplesPerPixel);
+
+/// Sets every obj/ply shape's normals (`render --normals`, `--crease-angle`): `source` where
+/// given, `creaseAngleDeg` where given. Throws Error for an angle outside [0, 180].
+void overrideNormals(SceneDescription& scene, std::optional<NormalSource> source,
+                     std::optional<double> creaseAngleDeg);
 
 /// The parameters in Mitsuba-like syntax, for error messages and logs.
 std::string toString(const SensorDesc& sensor);

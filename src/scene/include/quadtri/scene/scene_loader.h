@@ -1,4 +1,4 @@
-// Reads a Mitsuba 3 XML scene (the subset DESIGN.md §5 names) into a SceneDescription.
+// Reads a Mitsuba 3 XML scene (the subset docs/DESIGN.md §5 names) into a SceneDescription.
 #pragma once
 
 #include <filesystem>

@@ -22,13 +22,23 @@ bool edgeEndsSwapped(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3&
 /// Where the tangent planes are (nearly) parallel the system is singular: a damped
 /// pseudo-inverse drives the offset from the chord midpoint smoothly to the straight edge, and
 /// the offset is bounded by the edge length so inconsistent normals cannot fling it away.
-Vec3 edgeControlPoint(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj);
+/// `gaveUp`, when given, is set to whether the point gives up the tangent planes: the bound
+/// replaced the solution, the solve was not finite (the chord midpoint is returned), or the
+/// damped solve leaves the point off either tangent plane by more than 1e-6 of the edge length
+/// (parallel planes that do not hold the edge, e.g. a step between equal normals).
+Vec3 edgeControlPoint(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3& nj,
+                      bool* gaveUp = nullptr);
 
 /// Control points of every triangle's edges: result[t][k] belongs to local edge k (corners k
-/// and (k+1)%3). Each mesh edge is solved once, from normals both sides share: at each endpoint
-/// the normalised mean of the corner normals that the edge's triangles have there, which is the
-/// corner normal itself unless the file splits normals at that vertex (a crease).
-std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh);
+/// and (k+1)%3). Each mesh edge is solved once, from data both sides share (creases.h): where
+/// its triangles carry the same normal at each end, edgeControlPoint of those normals; where
+/// they split normals at an end by less than kCreaseMinDegrees, edgeControlPoint of the
+/// normalised means; at a crease (normals split further), creaseControlPoint, whose tangent
+/// there follows the crease line n₁ × n₂ (a cube's edges stay straight).
+/// `gaveUpPatches`, when given, gets one flag per triangle: 1 where one of its edges' control
+/// points gave up its tangent planes (see edgeControlPoint; the crease rule reports none).
+std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
+                                                   std::vector<uint8_t>* gaveUpPatches = nullptr);
 
 /// The quadratic Bézier triangle with corners v[k] and edge control points b[k] (edge k joins
 /// corners k and k+1), in barycentric (u, v) with corner 0 at (0,0), 1 at (1,0), 2 at (0,1).

@@ -44,6 +44,9 @@ std::array<EdgeCurve, 3> thesisEdgeCurves(const QuadraticPatch& patch);
 ///   v1v2's, so the boundary misses its edge curve by up to |Δbulge|/2, and the corner tangents
 ///   are not in the tangent planes. sharesEdges() is false so its tessellation is not welded.
 ///
+/// fellBack(t): one of the patch's edge control points gave up its tangent planes (clamped, or a
+/// damped solve off them: edge_curves.h).
+///
 /// patchJson(t): {"vertices": [v0, v1, v2], "control_points": {"b01", "b12", "b20"},
 /// "edge_curves": {"f_u": [c0, c1, c2], "f_v": [...], "f_w": [...]}} (eq. 4.1, 4.3).
 class EdgesModel final : public SurfaceModel {

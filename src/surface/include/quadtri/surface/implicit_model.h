@@ -15,7 +15,9 @@ namespace quadtri {
 /// axis-aligned box. The thesis had no box; here it is the box of the patch's own surface: the
 /// 45 points of a triangular lattice of f_p with 8 steps per side, projected onto the quadric
 /// along f_p's normal (only those inside the planes), plus the triangle's corners, inflated by
-/// 5% of the triangle's longest edge so the sheet between samples stays inside.
+/// 5% of the triangle's longest edge so the sheet between samples stays inside. fellBack(t):
+/// one of f_p's edge control points gave up its tangent planes (clamped, or a damped solve off
+/// them: edge_curves.h).
 class ImplicitModel final : public SurfaceModel {
  public:
   explicit ImplicitModel(std::shared_ptr<const TriangleMesh> mesh);

@@ -1,5 +1,6 @@
 // What the local-interpolation models (phong, pn, nagata) share: each patch is built from one
-// triangle's corners and corner normals alone.
+// triangle's corners and corner normals (and, where the mesh splits normals, the data its edges'
+// sides share: creases.h).
 #pragma once
 
 #include <array>
@@ -18,11 +19,6 @@ struct LocalTriangle {
 /// Triangle t's corners and its corner normals, renormalised so formulas that assume unit
 /// normals (tangent-plane projections, PN's w_ij) hold to round-off.
 LocalTriangle localTriangle(const TriangleMesh& mesh, size_t t);
-
-/// True when every mesh edge's triangles carry the same normal at each of its endpoints. A local
-/// patch's boundary curve depends only on its edge's two corners and their normals, so then
-/// neighbours share their boundaries (C0); where a file splits normals (a crease) they do not.
-bool edgesShareNormals(const TriangleMesh& mesh);
 
 /// The unit geometric normal ±(du × dv)/|du × dv| of patch t, signed like patchOrientation so
 /// it lies on the side of the shading normals. Where du × dv vanishes (a degenerate triangle)

@@ -1,6 +1,8 @@
-// One interface for every way of turning a triangle mesh into render primitives (DESIGN.md §3).
+// One interface for every way of turning a triangle mesh into render primitives (docs/DESIGN.md
+// §3).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
@@ -64,8 +66,22 @@ class SurfaceModel {
   /// The data of patch t for `quadtri convert --json` (see README, "Patch JSON").
   virtual nlohmann::json patchJson(size_t t) const = 0;
 
+  /// Whether patch t gave up one of its constraints while the model was built (a fallback:
+  /// a clamped edge control point, a patch replaced by its triangle's plane, ...; each model
+  /// says which). Always false for models without such a path.
+  bool fellBack(size_t t) const { return !fallbacks_.empty() && fallbacks_[t] != 0; }
+  /// Number of patches t with fellBack(t).
+  size_t fallbackCount() const { return fallbackCount_; }
+
+ protected:
+  /// Records which patches fell back: one flag per patch (or none, meaning no patch did).
+  /// Recording changes nothing else about the model.
+  void setFallbacks(std::vector<uint8_t> flags);
+
  private:
   std::shared_ptr<const TriangleMesh> mesh_;
+  std::vector<uint8_t> fallbacks_;
+  size_t fallbackCount_ = 0;
 };
 
 /// Every model name, in the order `--model all` lists them.

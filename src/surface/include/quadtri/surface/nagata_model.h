@@ -19,7 +19,10 @@ namespace quadtri {
 /// (|n0·n1| ≥ cos 0.1°) so round-off cannot be amplified by the vanishing denominators. Near
 /// (but beyond) opposite normals the coefficient still grows like 1/|v|, as published; Neto et
 /// al. (CAD 45, 2013) discuss this limitation. Symmetric: swapping the ends gives the same c.
-Vec3 nagataCurvature(const Vec3& x0, const Vec3& n0, const Vec3& x1, const Vec3& n1);
+/// `gaveUp`, when given, is set to whether the zero rule left the edge straight although its
+/// chord leaves one of the tangent planes by more than 0.1° (so x'(0) or x'(1) is not tangent).
+Vec3 nagataCurvature(const Vec3& x0, const Vec3& n0, const Vec3& x1, const Vec3& n1,
+                     bool* gaveUp = nullptr);
 
 /// Nagata's patch x(η,ζ) = x00 + (x10 − x00 − c1) η + (x11 − x10 + c1 − c3) ζ + (c3 − c1 − c2) ηζ
 /// + c1 η² + c2 ζ² on 0 ≤ ζ ≤ η ≤ 1 is the quadratic Bézier triangle over the same corners
@@ -33,14 +36,16 @@ Vec3 nagataCurvature(const Vec3& x0, const Vec3& n0, const Vec3& x1, const Vec3&
 ///
 /// Corners are interpolated and the corner tangent planes are the vertex tangent planes, so the
 /// geometric normal there is the vertex normal (except on edges the zero rule flattens). Each
-/// boundary depends only on its edge's corners and normals: C0 where the mesh shares normals,
-/// cracks at split normals (sharesEdges() is false on such a mesh).
+/// boundary depends only on its edge's corners and the data its sides share there, so
+/// neighbours always share edges (C0): where the mesh splits normals at an end of an edge,
+/// the edge takes creaseControlPoint (its tangent along the crease line n₁ × n₂) and
+/// c = x0 + x1 − 2b; nearly equal split normals are replaced by their mean. fellBack(t): the zero
+/// rule gave up an end tangent of one of the patch's edges (see nagataCurvature).
 class NagataModel final : public SurfaceModel {
  public:
   explicit NagataModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "nagata"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
-  bool sharesEdges() const override { return sharesEdges_; }
   nlohmann::json patchJson(size_t t) const override;
 
   /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).
@@ -50,7 +55,6 @@ class NagataModel final : public SurfaceModel {
  private:
   std::vector<std::array<Vec3, 3>> curvatures_;
   std::vector<QuadraticPatch> patches_;
-  bool sharesEdges_;
 };
 
 }  // namespace quadtri

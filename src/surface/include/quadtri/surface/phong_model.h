@@ -1,36 +1,46 @@
 // `phong`: Phong tessellation (Boubekeur and Alexa, "Phong Tessellation", SIGGRAPH Asia 2008).
 #pragma once
 
+#include <vector>
+
+#include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri {
 
 /// Phong tessellation: p*(u,v) = (1−α) p(u,v) + α Σ_i λ_i π_i(p(u,v)), where p is the flat
 /// triangle, λ = (1−u−v, u, v) and π_i(q) = q − ((q − p_i)·n_i) n_i projects onto corner i's
-/// tangent plane; α is the paper's shape factor (3/4 recommended). The patch is quadratic.
+/// tangent plane; α is the paper's shape factor (3/4 recommended). The patch is quadratic:
+/// with p − p_i = Σ_j λ_j (p_j − p_i) it is the quadratic Bézier triangle over the corners whose
+/// edge control points are b_ij = (p_i + p_j)/2 − (α/2)(R_i(e) − R_j(e)), e = p_j − p_i and
+/// R_i(e) = (e·n_i) n_i, what π_i removes from the chord; that is how it is evaluated.
 ///
 /// Normal: the paper shades with the interpolated vertex normals; this model returns the
 /// geometric normal (∂p*/∂u × ∂p*/∂v, analytic) instead, because quadtri's point is that the
 /// geometric normal is the shading normal, and analysis must measure the geometry.
 ///
 /// What holds (tested): corners are interpolated exactly; each boundary curve depends only on
-/// its edge's two corners and normals, so neighbours share edges only where the mesh shares
-/// normals (split normals at a crease open a crack: sharesEdges() is false on such a mesh);
-/// the geometric normal at a corner is not the vertex normal in general (the other corners'
-/// tangent planes pull the corner tangents out of it: 2.64° on an icosahedron with sphere
-/// normals at α = 3/4); flat input gives the flat triangle.
+/// its edge's two corners and the data its sides share there, so neighbours always share their
+/// edges. Where the mesh splits normals at an end of an edge, R uses that shared data: at a
+/// crease R(e) = e − (e·d)d, the part of the chord off the crease line d = n₁ × n₂ (the
+/// projection onto the crease line instead of a tangent plane, so a straight crease stays
+/// straight); nearly equal split normals are replaced by their mean. The geometric normal at a
+/// corner is not the vertex normal in general (the other corners' tangent planes pull the
+/// corner tangents out of it: 2.64° on an icosahedron with sphere normals at α = 3/4); flat
+/// input gives the flat triangle.
 class PhongModel final : public SurfaceModel {
  public:
   explicit PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha = 0.75);
   std::string_view name() const override { return "phong"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
-  bool sharesEdges() const override { return sharesEdges_; }
   nlohmann::json patchJson(size_t t) const override;
   double alpha() const { return alpha_; }
+  /// The quadratic Bézier form of patch t (edge k joins corners k and k+1).
+  const QuadraticPatch& patch(size_t t) const { return patches_[t]; }
 
  private:
   double alpha_;
-  bool sharesEdges_;
+  std::vector<QuadraticPatch> patches_;
 };
 
 }  // namespace quadtri

@@ -4,6 +4,7 @@
 #include <array>
 #include <vector>
 
+#include "quadtri/surface/creases.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri {
@@ -22,7 +23,13 @@ struct PnPatch {
   /// (E the mean of the six edge points, V the centroid); n_ii = n_i; the edge normal n_ij is
   /// n_i + n_j − v_ij (p_j − p_i) normalised, v_ij = 2 (p_j − p_i)·(n_i + n_j) / |p_j − p_i|²,
   /// the mirror image of n_i + n_j in the plane normal to the edge.
-  static PnPatch fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm);
+  ///
+  /// With `ends` (edgeEnds of the patch's triangle), an edge end where the mesh splits
+  /// normals uses data both sides share: at a crease the edge point is (2p_i + p_j)/3
+  /// projected onto the crease line through p_i, p_i + ((p_j − p_i)·d) d/3, instead of onto
+  /// the tangent plane; nearly equal split normals are replaced by their mean.
+  static PnPatch fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm,
+                             const std::array<std::array<EdgeEnd, 2>, 3>* ends = nullptr);
 
   Vec3 position(double u, double v) const;
   /// ∂b/∂u and ∂b/∂v: 3 Σ_{i+j+k=2} B²_ijk(λ) (b_{i,j+1,k} − b_{i+1,j,k}) and likewise for v.
@@ -33,16 +40,16 @@ struct PnPatch {
 
 /// Curved PN triangles. evaluate() returns the cubic's geometric normal, so analysis measures
 /// the geometry; the paper's own quadratic normal field, which a PN renderer shades with, is
-/// pnNormal(). Each cubic boundary depends only on its edge's two corners and normals, so
-/// neighbours share edges (C0) where the mesh shares normals; split normals crack
-/// (sharesEdges() is false on such a mesh). The corner tangent planes are the vertex tangent
-/// planes, so the geometric normal at each corner is the vertex normal.
+/// pnNormal(). Each cubic boundary depends only on its edge's two corners and the data its
+/// sides share there (their normal, or at a crease the crease line n₁ × n₂), so neighbours
+/// always share edges (C0), split normals included. The corner tangent planes are the vertex
+/// tangent planes, so the geometric normal at each corner is the vertex normal (at a crease
+/// too: the crease line lies in the side's own tangent plane).
 class PnModel final : public SurfaceModel {
  public:
   explicit PnModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "pn"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
-  bool sharesEdges() const override { return sharesEdges_; }
   nlohmann::json patchJson(size_t t) const override;
 
   /// The paper's quadratic normal field of patch t at (u, v), normalised (falls back to the
@@ -52,7 +59,6 @@ class PnModel final : public SurfaceModel {
 
  private:
   std::vector<PnPatch> patches_;
-  bool sharesEdges_;
 };
 
 }  // namespace quadtri

@@ -1,5 +1,5 @@
 // `quadric-implicit-robust`: one corner-exact implicit quadric per triangle, clipped by shared
-// edge planes (DESIGN.md §3, findings on §4.3).
+// edge planes (docs/DESIGN.md §3, findings on §4.3).
 #pragma once
 
 #include <array>
@@ -56,6 +56,8 @@ namespace quadtri {
 /// evaluate(t, u, v) projects the thesis' parametric patch f_p(u, v) onto the quadric along a
 /// direction that lies in the edge plane on each edge (the start point moved into that plane),
 /// so the boundary it reports is the clipped boundary.
+/// fellBack(t): patch t gave up its corner normals (blended, or its triangle's plane), or its
+/// triangle has no extent (QuadricFit::pointFallback).
 class RobustImplicitModel final : public SurfaceModel {
  public:
   explicit RobustImplicitModel(std::shared_ptr<const TriangleMesh> mesh);

@@ -1,4 +1,4 @@
-// The corner-exact quadric fit of `quadric-implicit-robust` (DESIGN.md §3, findings on §4.3).
+// The corner-exact quadric fit of `quadric-implicit-robust` (docs/DESIGN.md §3, findings on §4.3).
 #pragma once
 
 #include <array>
@@ -34,6 +34,10 @@ struct QuadricFit {
   /// The direction q may move in without changing (1) and (2): the square of the triangle's
   /// plane (zero at a point triangle), on the same scale as q.
   QuadricCoeffs pencil{};
+  /// True when the triangle has no extent or the hard rows (1) vanish or contradict each other:
+  /// q is then the plane through the first corner with the mean normal, which gives up the
+  /// other corners and the normals.
+  bool pointFallback = false;
 };
 
 /// Fits q = 0 through the three corners exactly, in a local frame (origin at the centroid, unit

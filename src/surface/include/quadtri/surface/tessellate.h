@@ -25,7 +25,9 @@ struct Tessellation {
 /// Evaluates every patch of `model` on the tessellation's points and triangulates them. Vertex
 /// normals are the model's surface normals. When model.sharesEdges(), points on a mesh edge and
 /// at mesh vertices are created once and shared by both patches (welded), so the tessellation
-/// of a closed mesh is closed. InputTriangles models return their mesh unchanged.
+/// of a closed mesh is closed; where the mesh splits normals (on such an edge or at such a
+/// vertex) each patch keeps its own surface normal there (per-corner normals), so a crease
+/// stays sharp in shading. InputTriangles models return their mesh unchanged.
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellation);
 
 }  // namespace quadtri

@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "quadtri/math/vec.h"
 #include "quadtri/math/color.h"
+#include "quadtri/math/vec.h"
 
 namespace quadtri {
 

@@ -1,8 +1,8 @@
 // Fresnel reflectance of smooth interfaces, shared by the smooth and rough BSDFs.
 #pragma once
 
-#include "quadtri/math/vec.h"
 #include "quadtri/math/color.h"
+#include "quadtri/math/vec.h"
 
 namespace quadtri {
 

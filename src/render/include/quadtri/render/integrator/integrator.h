@@ -5,8 +5,8 @@
 #include <string>
 
 #include "quadtri/geometry/accel.h"
-#include "quadtri/math/color.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/math/color.h"
 
 namespace quadtri {
 

@@ -1,0 +1,52 @@
+// Rendering a scene file as `quadtri render` does: the file's <default>s overridden by defines,
+// the model, samples per pixel and seed overridden when given. Shared by the CLI and the Python
+// module, so both render the same image from the same arguments.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "quadtri/render/renderer.h"
+#include "quadtri/scene/scene_builder.h"
+#include "quadtri/scene/scene_loader.h"
+
+namespace quadtri {
+
+/// What a render takes besides the scene file (`quadtri render`'s options).
+struct SceneRenderRequest {
+  SceneDefines defines;                ///< -D name=value: wins over the file's <default>s
+  std::optional<std::string> model;    ///< --model: replaces the model of every obj/ply shape
+  std::optional<int> samplesPerPixel;  ///< --spp: the sampler's count, an adaptive integrator's cap
+  std::optional<uint64_t> seed;        ///< --seed: the sampler's seed
+  int threads = 0;                     ///< worker threads, 0: all (the image does not depend on it)
+  double timeLimitSeconds = 0;         ///< 0: none; pixels not started in time stay black
+  /// --normals / --crease-angle: replace every obj/ply shape's normal settings when given.
+  std::optional<NormalSource> normals;
+  std::optional<double> creaseAngleDegrees;
+  /// --max-memory: the scene's image and meshes with their models must fit (0: no limit).
+  uint64_t maxMemoryBytes = 0;
+  /// Called with each warning (a define the file has no <default> for, a model that folds or
+  /// falls back on a mesh) as it is found; the warnings are ignored when unset.
+  std::function<void(const std::string&)> warn;
+  /// Called with each "FILE:LINE: note: ..." of a Mitsuba property accepted without effect.
+  std::function<void(const std::string&)> note;
+};
+
+/// A scene built for rendering, with the request applied to its render options.
+struct PreparedRender {
+  SceneDescription description;  ///< as loaded, with the request's overrides applied
+  BuiltScene built;
+  RenderOptions options;  ///< cancel and progress are left for the caller to set
+};
+
+/// Loads `file` with the request's defines, applies the samples-per-pixel override to the
+/// description, builds the scene with the model override and fills the render options. Throws
+/// Error for a bad scene or a bad request (spp below 1, negative threads, a non-positive or
+/// non-finite time limit), naming the file and line or the argument.
+PreparedRender prepareSceneRender(const std::filesystem::path& file,
+                                  const SceneRenderRequest& request);
+
+}  // namespace quadtri

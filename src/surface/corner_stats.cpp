@@ -1,0 +1,102 @@
+#include "quadtri/surface/corner_stats.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <array>
+
+namespace quadtri {
+namespace {
+
+// Barycentric (u, v) of corner k: (0,0), (1,0), (0,1).
+const std::array<Vec2, 3> kCornerUv = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+
+CornerStats join(CornerStats a, const CornerStats& b) {
+  a.corners += b.corners;
+  a.inconsistent += b.inconsistent;
+  a.flips += b.flips;
+  a.consistentFlips += b.consistentFlips;
+  a.maxNormalErrorDeg = std::max(a.maxNormalErrorDeg, b.maxNormalErrorDeg);
+  if (b.maxConsistentNormalErrorDeg)
+    a.maxConsistentNormalErrorDeg =
+        std::max(a.maxConsistentNormalErrorDeg.value_or(0.0), *b.maxConsistentNormalErrorDeg);
+  // The first non-finite corner in patch order, whichever way the range was split.
+  if (b.nonFinite && (!a.nonFinite || b.firstNonFinitePatch < a.firstNonFinitePatch)) {
+    a.firstNonFinitePatch = b.firstNonFinitePatch;
+    a.firstNonFiniteCorner = b.firstNonFiniteCorner;
+  }
+  a.nonFinite += b.nonFinite;
+  return a;
+}
+
+// "2.31% of consistent corners (690 of 29868)".
+std::string share(size_t part, size_t whole, std::string_view what) {
+  return fmt::format("{:.3g}% of {} ({} of {})", 100.0 * double(part) / double(whole), what, part,
+                     whole);
+}
+
+}  // namespace
+
+std::optional<double> CornerStats::consistentFlipRate() const {
+  if (consistent() == 0) return std::nullopt;
+  return double(consistentFlips) / double(consistent());
+}
+
+CornerStats cornerStats(const SurfaceModel& model) {
+  const TriangleMesh& mesh = model.mesh();
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, model.patchCount()), CornerStats(),
+      [&](const tbb::blocked_range<size_t>& range, CornerStats s) {
+        for (size_t t = range.begin(); t != range.end(); ++t) {
+          const Vec3 face = mesh.faceCross(t);
+          for (int k = 0; k < 3; ++k) {
+            ++s.corners;
+            const Vec3 nk = mesh.cornerNormal(t, k);
+            const bool consistent = face.dot(nk) > 0.0;
+            s.inconsistent += !consistent;
+            const SurfacePoint p = model.evaluate(t, kCornerUv[k].x(), kCornerUv[k].y());
+            if (!allFinite(p.position) || !allFinite(p.normal)) {
+              if (s.nonFinite++ == 0) {
+                s.firstNonFinitePatch = t;
+                s.firstNonFiniteCorner = k;
+              }
+              continue;
+            }
+            const double error = angleDegrees(p.normal, nk);
+            const bool flip = p.normal.dot(nk) < 0.0;
+            s.maxNormalErrorDeg = std::max(s.maxNormalErrorDeg, error);
+            s.flips += flip;
+            if (consistent) {
+              s.consistentFlips += flip;
+              s.maxConsistentNormalErrorDeg =
+                  std::max(s.maxConsistentNormalErrorDeg.value_or(0.0), error);
+            }
+          }
+        }
+        return s;
+      },
+      join);
+}
+
+double fallbackRate(const SurfaceModel& model) {
+  if (model.patchCount() == 0) return 0.0;
+  return double(model.fallbackCount()) / double(model.patchCount());
+}
+
+std::optional<std::string> conversionWarning(const SurfaceModel& model, std::string_view mesh) {
+  if (model.patchCount() == 0) return std::nullopt;
+  const CornerStats corners = cornerStats(model);
+  const std::optional<double> folds = corners.consistentFlipRate();
+  const bool folding = folds && *folds > kConversionWarningRate;
+  const bool fallingBack = fallbackRate(model) > kConversionWarningRate;
+  if (!folding && !fallingBack) return std::nullopt;
+  const std::string foldPart =
+      corners.consistent()
+          ? "folds at " + share(corners.consistentFlips, corners.consistent(), "consistent corners")
+          : std::string("has no consistent corner");
+  return fmt::format("{}: {} {} and falls back on {}", mesh, model.name(), foldPart,
+                     share(model.fallbackCount(), model.patchCount(), "patches"));
+}
+
+}  // namespace quadtri

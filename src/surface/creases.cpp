@@ -1,0 +1,139 @@
+#include "quadtri/surface/creases.h"
+
+#include <Eigen/QR>
+#include <cmath>
+
+#include "quadtri/mesh/topology.h"
+#include "quadtri/surface/edge_curves.h"
+
+namespace quadtri {
+namespace {
+
+// As edgeControlPoint: negligible where the constraints meet at a real angle, decisive where a
+// direction is left free (a straight crease leaves the one along the edge free).
+constexpr double kDamping = 1e-7;
+
+// The end of an edge at position index v from its sides' unit corner normals there.
+EdgeEnd classifyEnd(const std::vector<Vec3>& normals, const Vec3& chord) {
+  EdgeEnd end;
+  bool allEqual = true;
+  for (const Vec3& n : normals) allEqual &= n == normals.front();
+  if (allEqual) return end;  // Shared
+  const double minCos = std::cos(kCreaseMinDegrees * kPi / 180.0);
+  bool close = true;
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& a : normals) {
+    sum += a;
+    for (const Vec3& b : normals) close &= a.dot(b) >= minCos;
+  }
+  if (close) {
+    end.kind = EdgeEnd::Kind::Merged;
+    end.normal = safeNormalized(sum, normals.front());
+    return end;
+  }
+  end.kind = EdgeEnd::Kind::Crease;
+  const Vec3 straight = safeNormalized(chord, Vec3(1, 0, 0));
+  if (normals.size() != 2) {
+    end.direction = straight;
+    return end;
+  }
+  const Vec3 cross = normals[0].cross(normals[1]);
+  // |n₁ × n₂| below sin 1°: the normals are nearly opposite (nearly equal ones merged above).
+  end.direction = cross.norm() > std::sin(kCreaseMinDegrees * kPi / 180.0)
+                      ? Vec3(cross.normalized())
+                      : straight;
+  return end;
+}
+
+}  // namespace
+
+Vec3 EdgeEnd::tangentPart(const Vec3& e, const Vec3& own) const {
+  if (kind == Kind::Crease) return e.dot(direction) * direction;
+  const Vec3& n = normalFor(own);
+  return e - e.dot(n) * n;
+}
+
+EdgeEnds edgeEnds(const TriangleMesh& mesh) {
+  if (!mesh.hasNormals()) return EdgeEnds(mesh.triangleCount());
+  return edgeEnds(mesh, MeshTopology(mesh));
+}
+
+EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
+  EdgeEnds out(mesh.triangleCount());
+  if (!mesh.hasNormals()) return out;
+  std::vector<Vec3> na, nb;
+  for (const Edge& edge : topo.edges) {
+    na.clear();
+    nb.clear();
+    for (auto [t, k] : edge.sides) {
+      const bool forward = mesh.triangles[t][k] == edge.a;
+      const int ka = forward ? k : (k + 1) % 3, kb = forward ? (k + 1) % 3 : k;
+      na.push_back(safeNormalized(mesh.cornerNormal(t, ka), mesh.faceNormal(t)));
+      nb.push_back(safeNormalized(mesh.cornerNormal(t, kb), mesh.faceNormal(t)));
+    }
+    const Vec3 chord = mesh.positions[edge.b] - mesh.positions[edge.a];
+    const EdgeEnd a = classifyEnd(na, chord), b = classifyEnd(nb, chord);
+    for (auto [t, k] : edge.sides) {
+      const bool forward = mesh.triangles[t][k] == edge.a;
+      out[t][k] = forward ? std::array<EdgeEnd, 2>{a, b} : std::array<EdgeEnd, 2>{b, a};
+    }
+  }
+  return out;
+}
+
+bool hasSplitEdges(const EdgeEnds& ends) {
+  for (const auto& triangle : ends)
+    for (const auto& edge : triangle)
+      for (const EdgeEnd& end : edge)
+        if (end.kind != EdgeEnd::Kind::Shared) return true;
+  return false;
+}
+
+Vec3 creaseControlPoint(const Vec3& vaIn, const EdgeEnd& eaIn, const Vec3& naIn, const Vec3& vbIn,
+                        const EdgeEnd& ebIn, const Vec3& nbIn) {
+  // Canonical order (positions differ on a real edge) makes both sides compute the same bits.
+  const bool swap = edgeEndsSwapped(vaIn, Vec3::Zero(), vbIn, Vec3::Zero());
+  const Vec3& va = swap ? vbIn : vaIn;
+  const Vec3& vb = swap ? vaIn : vbIn;
+  const EdgeEnd& ea = swap ? ebIn : eaIn;
+  const EdgeEnd& eb = swap ? eaIn : ebIn;
+  const Vec3& na = swap ? nbIn : naIn;
+  const Vec3& nb = swap ? naIn : nbIn;
+  const Vec3 e = vb - va;
+  const double len = e.norm();
+  const Vec3 mid = 0.5 * (va + vb);
+  if (!(len > 0.0)) return mid;
+  // b = mid + δ. A smooth end v (unit normal n) asks n·(b − v) = 0; a crease end asks the same
+  // of two unit vectors u₁, u₂ normal to its direction d, i.e. b − v ∥ d.
+  Eigen::Matrix<double, 7, 3> A = Eigen::Matrix<double, 7, 3>::Zero();
+  Eigen::Matrix<double, 7, 1> r = Eigen::Matrix<double, 7, 1>::Zero();
+  int rows = 0;
+  auto addEnd = [&](const EdgeEnd& end, const Vec3& own, const Vec3& v) {
+    auto row = [&](const Vec3& n) {
+      A.row(rows) = n.transpose();
+      r[rows++] = n.dot(v - mid);
+    };
+    if (!end.crease()) {
+      row(end.normalFor(own));
+      return;
+    }
+    Vec3 u1, u2;
+    orthonormalBasis(end.direction, u1, u2);
+    row(u1);
+    row(u2);
+  };
+  addEnd(ea, na, va);
+  addEnd(eb, nb, vb);
+  // The damping rows sit below the constraints; unused constraint rows stay zero.
+  A.bottomRows<3>() = kDamping * Mat3::Identity();
+  const Vec3 delta = A.householderQr().solve(r);
+  // Taken when b lies within half the chord of its midpoint and over its middle half, so that
+  // neither end's tangent 2(b − v) has less than half the chord's length along the chord.
+  if (allFinite(delta) && delta.norm() <= 0.5 * len && std::abs(delta.dot(e)) <= 0.25 * len * len)
+    return mid + delta;
+  // The quadratic nearest the cubic Hermite edge with end tangents T_a(e), T_b(e) (its control
+  // points va + T_a(e)/3 and vb − T_b(e)/3, degree-reduced): always within len/2 of mid.
+  return mid + 0.25 * (ea.tangentPart(e, na) - eb.tangentPart(e, nb));
+}
+
+}  // namespace quadtri

@@ -1,0 +1,26 @@
+// What a model costs in memory per input triangle, for refusing a mesh before it is converted.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "quadtri/surface/tessellate.h"
+
+namespace quadtri {
+
+/// What the model is built for: `convert` to OBJ/PLY (its tessellated surface and the file's
+/// text), `convert` to JSON (every patch as a JSON object), or tracing it (`render`, and
+/// `analyze`, which traces it for its crack rate): its tessellation and Embree's geometry.
+enum class ModelUse { ConvertMesh, ConvertJson, Render };
+
+/// Estimated peak bytes per input triangle of building `model` on a mesh and using it: its
+/// patch records, its tessellation (trianglesPerPatch() lattice triangles per patch, each with
+/// its share of welded vertices and normals, for OBJ/PLY output and for tracing tessellated
+/// models), the JSON of its patches, or the geometry Embree traces. Measured as peak resident
+/// memory on icospheres of 20k and 82k triangles; an estimate, within a factor of 2 of what
+/// those measurements found. An unknown name costs what the dearest model costs (makeModel
+/// refuses it later).
+uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tessellation,
+                               ModelUse use);
+
+}  // namespace quadtri

@@ -1,0 +1,66 @@
+// The real-mesh corpus subset that CI runs (docs/REAL_MESHES.md): six closed, manifold meshes of
+// CGAL's data set and npm's bunny, mechanical parts included, with the default crease-split
+// normals. Needs the corpus (scripts/fetch-corpus.sh; .ci/run fetches it and sets
+// QUADTRI_CORPUS); skipped when QUADTRI_CORPUS is unset.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "quadtri/analysis/metrics.h"
+#include "quadtri/mesh/mesh_io.h"
+
+namespace quadtri {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Closed and manifold (data/corpus-manifest.csv), 446 to 3,674 triangles.
+constexpr const char* kSubset[] = {"cgal/joint.off", "cgal/anchor.off", "cgal/pinion.off",
+                                   "cgal/hand.off",  "cgal/eight.off",  "npm/bunny.obj"};
+
+std::optional<fs::path> corpus() {
+  const char* dir = std::getenv("QUADTRI_CORPUS");
+  if (!dir || !*dir) return std::nullopt;
+  return fs::path(dir);
+}
+
+class CorpusSubset : public ::testing::TestWithParam<const char*> {
+ protected:
+  std::shared_ptr<const TriangleMesh> load() {
+    const std::optional<fs::path> root = corpus();
+    if (!root) return nullptr;
+    const fs::path file = *root / GetParam();
+    if (!fs::exists(file)) ADD_FAILURE() << file << " is missing: run scripts/fetch-corpus.sh";
+    return std::make_shared<const TriangleMesh>(loadMesh(file));
+  }
+};
+
+// Every model whose geometry is welded is watertight on the subset: not one of 1,000,000
+// random lines crosses it an odd number of times (crease-split normals included).
+TEST_P(CorpusSubset, WeldedModelsDoNotCrackOnAMillionLines) {
+  if (!corpus()) GTEST_SKIP() << "QUADTRI_CORPUS is not set";
+  const auto mesh = load();
+  ASSERT_TRUE(mesh);
+  AnalysisOptions options;
+  options.crack.lines = 1000000;
+  for (const char* model :
+       {"flat", "shading-offset", "quadric-edges", "quadric-param", "phong", "pn", "nagata"}) {
+    const ModelMetrics m = analyzeNamedModel(model, mesh, GetParam(), std::nullopt, options);
+    ASSERT_TRUE(m.crackRate.has_value()) << model << " on " << GetParam();
+    EXPECT_EQ(*m.crackRate, 0.0) << model << " on " << GetParam();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, CorpusSubset, ::testing::ValuesIn(kSubset),
+                         [](const ::testing::TestParamInfo<const char*>& param) {
+                           std::string name = fs::path(param.param).stem().string();
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace quadtri
