@@ -464,12 +464,30 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
     patch.planeCount = 5;
     cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + 5}, tolerance);
     if (cell.vertices.size() < 4) return false;
-    // One sheet, a graph over the triangle's plane: orientation·∇q·n, linear in x, is positive
-    // at every vertex of the cell, so everywhere in it.
+    // One sheet, a graph over the triangle's plane: orientation·∇q·n is positive wherever the
+    // quadric vanishes in the cell. (Along a line parallel to n a quadric's two roots have
+    // opposite slopes, so each such line then meets it at most once.) orientation·∇q·n is
+    // linear in x: the part of the cell where it is at most a small margin is a convex cell,
+    // in which the quadric must have no zero.
     double gmax = 0.0;
     for (const Vec3& v : cell.vertices) gmax = std::max(gmax, quadricGradient(q, v).norm());
-    for (const Vec3& v : cell.vertices)
-      if (!(patch.orientation * quadricGradient(q, v).dot(n) > 1e-3 * gmax)) return false;
+    {
+      // orientation·(2Mx + g)·n <= margin, as a plane m·x + d >= 0.
+      Mat3 M;
+      M << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
+      const Vec3 slope = -patch.orientation * 2.0 * (M * n);
+      const double offset = -patch.orientation * Vec3(q[6], q[7], q[8]).dot(n) + 1e-3 * gmax;
+      bool folded = false;
+      if (slope.norm() > 1e-12 * gmax) {
+        std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + 5);
+        planes.push_back(Vec4(slope.x(), slope.y(), slope.z(), offset) / slope.norm());
+        const ConvexCell turned = makeConvexCell(planes, tolerance);
+        folded = !turned.empty() && !quadricBoundsInCell(q, turned).empty();
+      } else {
+        folded = !(offset < 0.0);  // orientation·∇q·n is constant: it must exceed the margin
+      }
+      if (folded) return false;
+    }
     // Inside the slab: orientation·q < 0 on all of its lower face, > 0 on all of its upper one.
     const double eps = 1e-9 * scale * gmax;
     const auto [lowLo, lowHi] = quadricRangeOnFace(q, cell, 3);
