@@ -76,18 +76,20 @@ struct LineHit {
   bool entering;
 };
 
-// Crossings among patch hits: a cluster of hits closer than `mergeDistance` is one crossing
-// when all its hits cross the same way (a line through a shared boundary hits each patch
-// there), two when it both enters and leaves.
+// Crossings among patch hits: a cluster of hits closer than `mergeDistance` is one place where
+// the line meets the surface. Its hits are too close to order, so only their balance counts: a
+// line through a shared boundary enters every patch there (or a fold, a bridge and its patches
+// enter twice and leave once), which is one crossing; a cluster that enters as often as it
+// leaves touches the surface, which is two.
 size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance) {
   std::sort(line.begin(), line.end(), [](const LineHit& a, const LineHit& b) { return a.s < b.s; });
   size_t crossings = 0;
   for (size_t i = 0; i < line.size();) {
-    bool mixed = false;
+    long balance = line[i].entering ? 1 : -1;
     size_t j = i + 1;
     for (; j < line.size() && line[j].s - line[j - 1].s < mergeDistance; ++j)
-      mixed |= line[j].entering != line[i].entering;
-    crossings += mixed ? 2 : 1;
+      balance += line[j].entering ? 1 : -1;
+    crossings += balance != 0 ? 1 : 2;
     i = j;
   }
   return crossings;

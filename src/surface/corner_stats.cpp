@@ -5,6 +5,10 @@
 #include <tbb/parallel_reduce.h>
 
 #include <array>
+#include <cmath>
+
+#include "quadtri/surface/creases.h"
+#include "quadtri/surface/edge_curves.h"
 
 namespace quadtri {
 namespace {
@@ -36,6 +40,24 @@ std::string share(size_t part, size_t whole, std::string_view what) {
                      whole);
 }
 
+// Whether corner k of triangle t is consistent (CornerStats): its shared tangents turn the way
+// the patch's side does.
+bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, int k) {
+  const int next = (k + 1) % 3, prev = (k + 2) % 3;
+  const Vec3 p = mesh.corner(t, k);
+  const Vec3 n = mesh.cornerNormal(t, k);
+  // Local edge k runs k → k+1 and starts here; local edge k+2 runs k+2 → k and ends here.
+  const Vec3 t1 = ends[t][k][0].tangentPart(mesh.corner(t, next) - p, n);
+  const Vec3 t2 = ends[t][prev][1].tangentPart(mesh.corner(t, prev) - p, n);
+  // A crease line that leaves the tangent plane (the chord, where more than two sides meet or
+  // the sides' normals are opposite) is no tangent the corner normal can keep.
+  for (const EdgeEnd* end : {&ends[t][k][0], &ends[t][prev][1]})
+    if (end->crease() && std::abs(end->direction.dot(n)) > 1e-6) return false;
+  // Tangents along one line (two edges leaving along the same crease line) span no plane:
+  // the sine of their angle must clear round-off.
+  return patchOrientation(mesh, t) * t1.cross(t2).dot(n) > 1e-9 * t1.norm() * t2.norm();
+}
+
 }  // namespace
 
 std::optional<double> CornerStats::consistentFlipRate() const {
@@ -45,15 +67,15 @@ std::optional<double> CornerStats::consistentFlipRate() const {
 
 CornerStats cornerStats(const SurfaceModel& model) {
   const TriangleMesh& mesh = model.mesh();
+  const EdgeEnds ends = edgeEnds(mesh);
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, model.patchCount()), CornerStats(),
       [&](const tbb::blocked_range<size_t>& range, CornerStats s) {
         for (size_t t = range.begin(); t != range.end(); ++t) {
-          const Vec3 face = mesh.faceCross(t);
           for (int k = 0; k < 3; ++k) {
             ++s.corners;
             const Vec3 nk = mesh.cornerNormal(t, k);
-            const bool consistent = face.dot(nk) > 0.0;
+            const bool consistent = consistentCorner(mesh, ends, t, k);
             s.inconsistent += !consistent;
             const SurfacePoint p = model.evaluate(t, kCornerUv[k].x(), kCornerUv[k].y());
             if (!allFinite(p.position) || !allFinite(p.normal)) {

@@ -54,6 +54,35 @@ TEST_P(CorpusSubset, WeldedModelsDoNotCrackOnAMillionLines) {
   }
 }
 
+// The robust implicit model is closed by construction (edge bridges): not one of 1,000,000
+// random lines cracks it on the subset, mechanical parts with creases included.
+TEST_P(CorpusSubset, RobustImplicitModelDoesNotCrackOnAMillionLines) {
+  if (!corpus()) GTEST_SKIP() << "QUADTRI_CORPUS is not set";
+  const auto mesh = load();
+  ASSERT_TRUE(mesh);
+  AnalysisOptions options;
+  options.crack.lines = 1000000;
+  const ModelMetrics m =
+      analyzeNamedModel("quadric-implicit-robust", mesh, GetParam(), std::nullopt, options);
+  ASSERT_TRUE(m.crackRate.has_value()) << GetParam();
+  EXPECT_EQ(*m.crackRate, 0.0) << GetParam();
+}
+
+// PN's corner tangents are what both sides of its edges share, so it folds at no consistent
+// corner and meets each one's normal exactly (crease-split normals included).
+TEST_P(CorpusSubset, PnMeetsEveryConsistentCorner) {
+  if (!corpus()) GTEST_SKIP() << "QUADTRI_CORPUS is not set";
+  const auto mesh = load();
+  ASSERT_TRUE(mesh);
+  AnalysisOptions options;
+  options.crack.lines = 1000;
+  const ModelMetrics m = analyzeNamedModel("pn", mesh, GetParam(), std::nullopt, options);
+  ASSERT_TRUE(m.vertexNormalFlipRateConsistent.has_value()) << GetParam();
+  EXPECT_EQ(*m.vertexNormalFlipRateConsistent, 0.0) << GetParam();
+  ASSERT_TRUE(m.vertexNormalErrorConsistentDeg.has_value()) << GetParam();
+  EXPECT_LT(*m.vertexNormalErrorConsistentDeg, 1e-6) << GetParam();
+}
+
 INSTANTIATE_TEST_SUITE_P(Meshes, CorpusSubset, ::testing::ValuesIn(kSubset),
                          [](const ::testing::TestParamInfo<const char*>& param) {
                            std::string name = fs::path(param.param).stem().string();

@@ -163,6 +163,37 @@ TEST(CornerStats, OneFlippedNormalMakesItsCornersInconsistent) {
   EXPECT_EQ(s.nonFinite, 0u);
 }
 
+TEST(CornerStats, AWoundBackwardsTriangleIsConsistentAndPnMeetsItsCorners) {
+  // icosphere:1 with one triangle's winding reversed: its corner normals all point to the other
+  // side, the patch takes that side, and its corners stay consistent. PN's corner tangents are
+  // its edges in the tangent planes, so it meets every consistent corner's normal exactly.
+  TriangleMesh mesh = makeBuiltin("icosphere", ShapeParams{1}).mesh;
+  std::swap(mesh.triangles[3][1], mesh.triangles[3][2]);
+  std::swap(mesh.normalIndices[3][1], mesh.normalIndices[3][2]);
+  const auto shared = std::make_shared<const TriangleMesh>(std::move(mesh));
+  const CornerStats s = cornerStats(*makeModel("pn", shared));
+  EXPECT_EQ(s.inconsistent, 0u);
+  EXPECT_EQ(s.flips, 0u);
+  ASSERT_TRUE(s.maxConsistentNormalErrorDeg);
+  EXPECT_LT(*s.maxConsistentNormalErrorDeg, 1e-9);
+}
+
+TEST(CornerStats, PnMeetsEveryConsistentCornerOfSplitNormalShapes) {
+  // Cube and capped cylinder with split normals: at a crease end PN's corner tangent is the
+  // crease line both sides share. Corners whose tangents do not turn the triangle's way are
+  // inconsistent; every other corner keeps its normal exactly.
+  for (const char* shape : {"cube", "cylinder"}) {
+    ShapeParams params;
+    params.divisions = 3;
+    const auto mesh = std::make_shared<const TriangleMesh>(makeBuiltin(shape, params).mesh);
+    const CornerStats s = cornerStats(*makeModel("pn", mesh));
+    EXPECT_GT(s.consistent(), 0u) << shape;
+    EXPECT_EQ(s.consistentFlips, 0u) << shape;
+    ASSERT_TRUE(s.maxConsistentNormalErrorDeg) << shape;
+    EXPECT_LT(*s.maxConsistentNormalErrorDeg, 1e-9) << shape;
+  }
+}
+
 TEST(CornerStats, NoConsistentCornerOnADegenerateTriangle) {
   TriangleMesh mesh;
   mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};

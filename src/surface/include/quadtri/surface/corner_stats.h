@@ -13,12 +13,18 @@
 namespace quadtri {
 
 /// Counts over the 3T corners of a model's T patches. Corner k of patch t is *consistent* when
-/// its triangle faces its shading normal n_k: (v1 − v0) × (v2 − v0) · n_k > 0 (a zero-area
-/// triangle has no consistent corner). Its patch *folds* there when the patch's normal n at the
-/// corner points away from n_k: n · n_k < 0.
+/// the tangents there that every side of its two edges shares turn the way the patch's side
+/// does: with T₁, T₂ the edges k→k+1 and k→k+2 projected onto the tangent plane of n_k (onto
+/// the crease line at a crease end, EdgeEnd::tangentPart) and s = patchOrientation(t) (the
+/// side the corner normals mostly point to), s (T₁ × T₂) · n_k > 0. Without creases that is
+/// s (v1 − v0) × (v2 − v0) · n_k > 0: the triangle faces n_k (a zero-area triangle has no
+/// consistent corner). Elsewhere constraint (2) contradicts the triangle (or the crease line
+/// its neighbour shares) and no patch whose edges leave the corner along those tangents can
+/// meet it without folding. Its patch *folds* there when the patch's normal n at the corner
+/// points away from n_k: n · n_k < 0.
 struct CornerStats {
   size_t corners = 0;
-  size_t inconsistent = 0;         ///< corners whose triangle faces away from n_k
+  size_t inconsistent = 0;         ///< corners that are not consistent
   size_t flips = 0;                ///< corners (all) where the patch folds
   size_t consistentFlips = 0;      ///< consistent corners where the patch folds
   double maxNormalErrorDeg = 0.0;  ///< max angle (degrees) between n and n_k, all corners
