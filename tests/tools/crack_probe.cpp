@@ -10,7 +10,8 @@
 // (stray sheets), the widest gaps between neighbours' boundaries along each edge (in units of
 // crackRate's merge distance), the lines whose crossings do not alternate between entering and
 // leaving, and how many cracked lines are even when each cluster of hits within the merge
-// distance counts its changes of direction (crackRate counts a mixed cluster as two). Not a
+// distance counts its changes of direction (crackRate counts a cluster by its balance of
+// entering and leaving hits: one crossing unless it enters as often as it leaves). Not a
 // test: a tool for finding causes.
 #include <fmt/core.h>
 #include <fmt/format.h>
