@@ -45,7 +45,7 @@ std::string toMarkdown(const MarkdownTable& table) {
     return out + "\n";
   };
   std::string out = line(table.header) + "|";
-  for (size_t i = 0; i < columns; ++i) out += i == 0 ? "---|" : "---:|";
+  for (size_t i = 0; i < columns; ++i) out += i == 0 || !table.rightAligned ? "---|" : "---:|";
   out += "\n";
   for (const auto& row : table.rows) out += line(row);
   return out;
@@ -181,6 +181,7 @@ MarkdownTable primitivesTable(const std::vector<ModelMetrics>& rows,
 
 MarkdownTable metricsMarkdown(const std::vector<ModelMetrics>& rows) {
   MarkdownTable table;
+  table.rightAligned = false;
   for (const std::string& key : metricKeys())
     if (key != "mesh" && key != "convert_seconds") table.header.push_back(key);
   for (const ModelMetrics& m : rows) {
@@ -300,6 +301,7 @@ std::vector<TargetCheck> memoryTargets(const std::vector<ModelMetrics>& rows,
 MarkdownTable targetsTable(const std::vector<TargetCheck>& checks) {
   MarkdownTable table;
   table.header = {"target", "measured: median (range over rounds)", "result"};
+  table.rightAligned = false;
   for (const TargetCheck& c : checks)
     table.rows.push_back({c.target, c.measured, c.pass ? "pass" : "FAIL"});
   return table;

@@ -33,8 +33,10 @@ ModelMetrics metrics(const std::string& model, const std::string& mesh, size_t p
 }
 
 TEST(ReproduceTables, MarkdownHasHeaderAlignmentAndRows) {
-  MarkdownTable table{{"model", "a", "b"}, {{"x", "1", "2"}, {"y", "3"}}};
+  MarkdownTable table{{"model", "a", "b"}, {{"x", "1", "2"}, {"y", "3"}}, true};
   EXPECT_EQ(toMarkdown(table), "| model | a | b |\n|---|---:|---:|\n| x | 1 | 2 |\n| y | 3 |  |\n");
+  table.rightAligned = false;
+  EXPECT_EQ(toMarkdown(table).substr(0, 31), "| model | a | b |\n|---|---|---|");
 }
 
 TEST(ReproduceTables, FigurePivotFormatsEachCellAndMarksMissingOnes) {

@@ -14,10 +14,12 @@
 
 namespace quadtri {
 
-/// A Markdown table; the first column is left-aligned, the others right-aligned.
+/// A Markdown table; the first column is left-aligned, the others right-aligned unless
+/// rightAligned is false.
 struct MarkdownTable {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
+  bool rightAligned = true;
 };
 
 /// `| a | b |` lines: the header, the alignment row, one line per row (a short row is padded
