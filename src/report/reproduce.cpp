@@ -263,9 +263,17 @@ three finest levels; "exact": every distance below 1e-10, round-off):
   return md;
 }
 
+/// Both runs measure the teapot, which only scripts/fetch-teapot.sh (node/npm) writes.
+void requireTeapot(const fs::path& root) {
+  if (!fs::is_regular_file(root / "data" / "teapot.obj"))
+    fail("reproduce: {} is missing (scripts/fetch-teapot.sh writes it)",
+         (root / "data" / "teapot.obj").string());
+}
+
 }  // namespace
 
 ReproduceResult measureModels(const ReproduceOptions& options) {
+  requireTeapot(options.root);
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   Reproduction r(options);
@@ -305,11 +313,9 @@ ReproduceResult measureModels(const ReproduceOptions& options) {
 }
 
 ReproduceResult reproduce(const ReproduceOptions& options) {
+  requireTeapot(options.root);
   Reproduction r(options);
   const fs::path& root = options.root;
-  if (!fs::is_regular_file(root / "data" / "teapot.obj"))
-    fail("reproduce: {} is missing (scripts/fetch-teapot.sh writes it)",
-         (root / "data" / "teapot.obj").string());
   const int levels = 7;
   for (int l = 0; l <= levels; ++l) {
     const fs::path path = root / "data" / fmt::format("icosphere-{}.obj", l);
