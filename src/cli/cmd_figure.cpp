@@ -8,7 +8,6 @@
 #include "commands.h"
 #include "normal_flags.h"
 #include "quadtri/io/atomic_file.h"
-#include "quadtri/io/line_plot.h"
 #include "quadtri/math/error.h"
 #include "quadtri/report/figure.h"
 #include "quadtri/surface/model.h"
@@ -124,18 +123,7 @@ Action addFigureCommand(CLI::App& app) {
       fmt::print("wrote {}\n", opt->csv);
     }
     if (!opt->ratioPlot.empty()) {
-      const std::string& numerator = request.models.back();
-      const Rgb colors[] = {
-          {0.85f, 0.3f, 0.1f}, {0.1f, 0.4f, 0.8f}, {0.2f, 0.6f, 0.2f}, {0.5f, 0.2f, 0.6f}};
-      std::vector<PlotSeries> series;
-      for (size_t i = 0; i + 1 < request.models.size(); ++i)
-        series.push_back({fmt::format("{} / {}", numerator, request.models[i]), colors[i % 4],
-                          renderTimeRatios(cells, numerator, request.models[i])});
-      PlotOptions plot;
-      plot.title = fmt::format("Render time ratio, setup {}", setup);
-      plot.xLabel = fmt::format("{} primitives (patches)", numerator);
-      plot.yLabel = "time ratio";
-      linePlot(series, plot).savePng(opt->ratioPlot);
+      renderTimeRatioPlot(cells, request.models, setup).savePng(opt->ratioPlot);
       fmt::print("wrote {}\n", opt->ratioPlot);
     }
     return 0;

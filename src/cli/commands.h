@@ -19,6 +19,7 @@ Action addConvertCommand(CLI::App& app);
 Action addFigureCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
+Action addReproduceCommand(CLI::App& app);
 Action addStudyCommand(CLI::App& app);
 
 }  // namespace quadtri::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add(&quadtri::cli::addFigureCommand);
   add(&quadtri::cli::addMeshCommand);
   add(&quadtri::cli::addRenderCommand);
+  add(&quadtri::cli::addReproduceCommand);
   add(&quadtri::cli::addStudyCommand);
   // A signal ends any command at once without leaving a temporary file behind; `render` takes
   // SIGINT, SIGTERM and SIGHUP over while it renders, to write what it has first.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "quadtri/io/line_plot.h"
 #include "quadtri/math/error.h"
 #include "quadtri/scene/scene_builder.h"
 
@@ -118,15 +119,21 @@ double median(std::vector<double> values) {
 }
 
 double renderTimeRatio(const FigureCell& num, const FigureCell& den) {
+  return renderTimeRatioRange(num, den).median;
+}
+
+RatioRange renderTimeRatioRange(const FigureCell& num, const FigureCell& den) {
   if (!num.renderTimes.empty() && num.renderTimes.size() == den.renderTimes.size()) {
     std::vector<double> ratios;
     for (size_t r = 0; r < num.renderTimes.size(); ++r) {
-      if (!(den.renderTimes[r] > 0)) return 0.0;
+      if (!(den.renderTimes[r] > 0)) return {};
       ratios.push_back(num.renderTimes[r] / den.renderTimes[r]);
     }
-    return median(std::move(ratios));
+    const auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());
+    return {median(ratios), *lo, *hi};
   }
-  return den.renderSeconds > 0 ? num.renderSeconds / den.renderSeconds : 0.0;
+  const double ratio = den.renderSeconds > 0 ? num.renderSeconds / den.renderSeconds : 0.0;
+  return {ratio, ratio, ratio};
 }
 
 std::string figureCsv(const std::string& setup, const std::vector<FigureCell>& cells) {
@@ -161,6 +168,23 @@ std::vector<std::pair<double, double>> renderTimeRatios(const std::vector<Figure
   }
   std::sort(points.begin(), points.end());
   return points;
+}
+
+Canvas renderTimeRatioPlot(const std::vector<FigureCell>& cells,
+                           const std::vector<std::string>& models, const std::string& setup) {
+  if (models.empty()) fail("a ratio plot needs a model");
+  const std::string& numerator = models.back();
+  const Rgb colors[] = {
+      {0.85f, 0.3f, 0.1f}, {0.1f, 0.4f, 0.8f}, {0.2f, 0.6f, 0.2f}, {0.5f, 0.2f, 0.6f}};
+  std::vector<PlotSeries> series;
+  for (size_t i = 0; i + 1 < models.size(); ++i)
+    series.push_back({fmt::format("{} / {}", numerator, models[i]), colors[i % 4],
+                      renderTimeRatios(cells, numerator, models[i])});
+  PlotOptions plot;
+  plot.title = fmt::format("Render time ratio, setup {}", setup);
+  plot.xLabel = fmt::format("{} primitives (patches)", numerator);
+  plot.yLabel = "time ratio";
+  return linePlot(series, plot);
 }
 
 }  // namespace quadtri

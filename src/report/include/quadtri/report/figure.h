@@ -86,6 +86,13 @@ double median(std::vector<double> values);
 /// num.renderSeconds / den.renderSeconds. 0 when a denominator time is not positive.
 double renderTimeRatio(const FigureCell& num, const FigureCell& den);
 
+/// renderTimeRatio with the range of the per-round ratios it takes the median of (lo = hi =
+/// median when the cells have no common rounds; all 0 when a denominator is not positive).
+struct RatioRange {
+  double median = 0, lo = 0, hi = 0;
+};
+RatioRange renderTimeRatioRange(const FigureCell& num, const FigureCell& den);
+
 /// CSV of the cells' costs: setup,shape,model,width,height,spp,primitives,geometry_bytes,
 /// build_s,render_s,render_min_s,render_max_s,render_times_s (render_s the median; the last
 /// column lists every round's time, separated by ';').
@@ -98,5 +105,10 @@ std::string figureCsv(const std::string& setup, const std::vector<FigureCell>& c
 std::vector<std::pair<double, double>> renderTimeRatios(const std::vector<FigureCell>& cells,
                                                         const std::string& numerator,
                                                         const std::string& denominator);
+
+/// The plot of figure 5.5 extended: renderTimeRatios of the last of `models` over each other
+/// one against the last model's primitives, titled with `setup`.
+Canvas renderTimeRatioPlot(const std::vector<FigureCell>& cells,
+                           const std::vector<std::string>& models, const std::string& setup);
 
 }  // namespace quadtri
