@@ -11,6 +11,7 @@
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
 #include "quadtri/render/render_state.h"
+#include "quadtri/render/tiles.h"
 #include "quadtri/scene/render_key.h"
 #include "quadtri/scene/scene_render.h"
 #include "quadtri/surface/model.h"
@@ -43,7 +44,7 @@ Action addRenderCommand(CLI::App& app) {
     double timeLimit = 0.0, checkpoint = 0.0;
     std::optional<uint64_t> seed;
     NormalFlags normals;
-    std::string resume;
+    std::string resume, crop, tile;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -75,6 +76,12 @@ Action addRenderCommand(CLI::App& app) {
                   "Resume the render saved in STATE (by --checkpoint): only the pixels it lacks "
                   "are rendered; refused unless the scene, options, seed and version match")
       ->check(CLI::ExistingFile);
+  sub->add_option("--crop", opt->crop,
+                  "Render only the film window X,Y,W,H (replaces the scene's crop window); the "
+                  "EXR keeps its place on the film, for `quadtri merge`");
+  sub->add_option("--tile", opt->tile,
+                  "Render only tile I of N (1 <= I <= N): film rows [(I-1)*H/N, I*H/N), for "
+                  "`quadtri merge`");
   return [opt, sppOption, timeOption, checkpointOption, maxMemory]() {
     const bool sppGiven = sppOption->count() > 0, timeGiven = timeOption->count() > 0;
     const bool checkpointGiven = checkpointOption->count() > 0;
@@ -88,6 +95,18 @@ Action addRenderCommand(CLI::App& app) {
       const std::string ext = std::filesystem::path(out).extension().string();
       if (ext != ".exr" && ext != ".png") fail("output {}: expected a .exr or .png file", out);
     }
+    std::optional<PixelWindow> crop;
+    std::optional<TileIndex> tile;
+    if (!opt->crop.empty()) crop = PixelWindow::parse(opt->crop);
+    if (!opt->tile.empty()) tile = TileIndex::parse(opt->tile);
+    if (crop && tile) fail("--crop and --tile: give one or the other");
+    if (crop || tile)
+      for (const std::string& out : opt->outputs)
+        if (std::filesystem::path(out).extension() != ".exr")
+          fail(
+              "output {}: {} renders a window of the film, written as .exr only (its data "
+              "window places it on the film); merge the tiles with `quadtri merge`",
+              out, crop ? "--crop" : "--tile");
     if (sppGiven && opt->spp <= 0) fail("--spp {}: expected a positive count", opt->spp);
     if (opt->threads < 0) fail("--threads {}: expected 0 (all) or a positive count", opt->threads);
     if (timeGiven && !(opt->timeLimit > 0.0))
@@ -105,6 +124,8 @@ Action addRenderCommand(CLI::App& app) {
     if (!opt->model.empty()) request.model = opt->model;
     if (sppGiven) request.samplesPerPixel = opt->spp;
     request.seed = opt->seed;
+    request.crop = crop;
+    request.tile = tile;
     request.threads = opt->threads;
     request.timeLimitSeconds = opt->timeLimit;
     request.normals = opt->normals.sourceOverride();
@@ -145,6 +166,12 @@ Action addRenderCommand(CLI::App& app) {
                  StopSignals::signalName(sig));
       return 128 + sig;
     }
+    if (crop || tile)
+      fmt::print(
+          stderr, "{}: window {} of the {}x{} film\n",
+          tile ? "tile " + tile->toString() : std::string("crop"),
+          PixelWindow{camera.cropX(), camera.cropY(), camera.width(), camera.height()}.toString(),
+          camera.filmWidth(), camera.filmHeight());
     fmt::print(stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
                built.integrator->adaptive()
                    ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
@@ -162,8 +189,28 @@ Action addRenderCommand(CLI::App& app) {
       saved = fmt::format("; saved {}, resume with --resume {}", statePath.string(),
                           statePath.string());
     }
+    // An EXR keeps its window's place on the film and what `quadtri merge` checks.
+    const std::optional<std::string> modelOverride =
+        opt->model.empty() ? std::nullopt : std::optional(opt->model);
+    ImageFrame frame;
+    frame.x = camera.cropX();
+    frame.y = camera.cropY();
+    frame.filmWidth = camera.filmWidth();
+    frame.filmHeight = camera.filmHeight();
+    frame.attributes = {
+        {tile_attribute::kSceneKey,
+         fmt::format("{:016x}", filmRenderKey(description, options, modelOverride))},
+        {tile_attribute::kScene, std::filesystem::path(opt->scene).filename().string()},
+        {tile_attribute::kSeed, std::to_string(options.seed)},
+        {tile_attribute::kSamples, std::to_string(options.samplesPerPixel)},
+        {tile_attribute::kModel, opt->model.empty() ? std::string("scene") : opt->model},
+        {tile_attribute::kTile, tile   ? tile->toString()
+                                : crop ? std::string("crop")
+                                       : (frame.wholeFilm(result.image) ? "film" : "crop")}};
     for (const std::string& out : opt->outputs) {
-      const size_t replaced = writeImage(result.image, out);
+      const bool exr = std::filesystem::path(out).extension() == ".exr";
+      const size_t replaced =
+          exr ? writeImage(result.image, out, frame) : writeImage(result.image, out);
       if (replaced)
         fmt::print(stderr, "warning: {}: {} non-finite values written as 0\n", out, replaced);
       fmt::print("wrote {}\n", out);

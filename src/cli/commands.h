@@ -17,6 +17,7 @@ Action addAnalyzeCommand(CLI::App& app);
 Action addConvergenceCommand(CLI::App& app);
 Action addConvertCommand(CLI::App& app);
 Action addFigureCommand(CLI::App& app);
+Action addMergeCommand(CLI::App& app);
 Action addMeshCommand(CLI::App& app);
 Action addRenderCommand(CLI::App& app);
 Action addReproduceCommand(CLI::App& app);

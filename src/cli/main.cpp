@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add(&quadtri::cli::addConvergenceCommand);
   add(&quadtri::cli::addConvertCommand);
   add(&quadtri::cli::addFigureCommand);
+  add(&quadtri::cli::addMergeCommand);
   add(&quadtri::cli::addMeshCommand);
   add(&quadtri::cli::addRenderCommand);
   add(&quadtri::cli::addReproduceCommand);

@@ -15,7 +15,16 @@ double linearToSrgb(double linear) {
   return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
 }
 
+bool ImageFrame::wholeFilm(const Image& image) const {
+  return x == 0 && y == 0 && (filmWidth == 0 || filmWidth == image.width) &&
+         (filmHeight == 0 || filmHeight == image.height);
+}
+
 size_t writeImage(const Image& image, const std::filesystem::path& path) {
+  return writeImage(image, path, ImageFrame{});
+}
+
+size_t writeImage(const Image& image, const std::filesystem::path& path, const ImageFrame& frame) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
@@ -26,6 +35,17 @@ size_t writeImage(const Image& image, const std::filesystem::path& path) {
       image.pixels.size() != size_t(image.width) * size_t(image.height))
     fail("{}: the image is empty or inconsistent ({}x{})", path.string(), image.width,
          image.height);
+  const int filmWidth = frame.filmWidth > 0 ? frame.filmWidth : image.width;
+  const int filmHeight = frame.filmHeight > 0 ? frame.filmHeight : image.height;
+  if (frame.x < 0 || frame.y < 0 || frame.x + image.width > filmWidth ||
+      frame.y + image.height > filmHeight)
+    fail("{}: the {}x{} image at {},{} does not lie on the {}x{} film", path.string(), image.width,
+         image.height, frame.x, frame.y, filmWidth, filmHeight);
+  if (png && !frame.wholeFilm(image))
+    fail(
+        "{}: the {}x{} window at {},{} of the {}x{} film can only be written as .exr (a PNG "
+        "cannot say where it lies); merge the tiles with `quadtri merge`, then convert",
+        path.string(), image.width, image.height, frame.x, frame.y, filmWidth, filmHeight);
 
   size_t nonFinite = 0;
   std::vector<float> linear(image.pixels.size() * 3);
@@ -47,9 +67,16 @@ size_t writeImage(const Image& image, const std::filesystem::path& path) {
     if (!out) fail("{}: cannot create an image writer: {}", path.string(), OIIO::geterror());
     const OIIO::TypeDesc type = exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
     OIIO::ImageSpec spec(image.width, image.height, 3, type);
-    if (exr)
+    if (exr) {
       spec.attribute("compression", "zip");
-    else
+      spec.x = frame.x;
+      spec.y = frame.y;
+      spec.full_x = 0;
+      spec.full_y = 0;
+      spec.full_width = filmWidth;
+      spec.full_height = filmHeight;
+      for (const auto& [name, value] : frame.attributes) spec.attribute(name, value);
+    } else
       spec.attribute("oiio:ColorSpace", "sRGB");
     const void* data =
         exr ? static_cast<const void*>(linear.data()) : static_cast<const void*>(srgb.data());

@@ -350,4 +350,42 @@ std::vector<fs::path> writeStudy(const fs::path& dir, const std::vector<StudyRow
   return {csv, summary};
 }
 
+size_t mergeStudyShards(const std::vector<std::filesystem::path>& shards,
+                        const std::filesystem::path& output) {
+  if (shards.empty()) fail("merge: no study shards given");
+  std::vector<CsvTable> tables;
+  for (const auto& path : shards) {
+    tables.push_back(readCsvFile(path));
+    if (tables.back().rows.empty()) fail("{}: empty, expected a study.csv", path.string());
+  }
+  const std::vector<std::string>& header = tables.front().rows.front();
+  if (header.empty() || header.front() != "mesh")
+    fail("{}: the header does not start with 'mesh': not a study.csv", shards.front().string());
+  std::map<std::string, size_t> meshShard;  // mesh -> index of the shard holding its rows
+  std::string out = fmt::format("{}\n", fmt::join(header, ","));
+  size_t rows = 0;
+  for (size_t s = 0; s < tables.size(); ++s) {
+    const CsvTable& table = tables[s];
+    if (table.rows.front() != header)
+      fail("{}: its header differs from {}'s: not shards of one study", shards[s].string(),
+           shards.front().string());
+    for (size_t r = 1; r < table.rows.size(); ++r) {
+      const std::vector<std::string>& row = table.rows[r];
+      if (row.size() != header.size())
+        fail("{}:{}: {} fields, the header has {}", shards[s].string(), table.line[r], row.size(),
+             header.size());
+      const auto [it, inserted] = meshShard.emplace(row.front(), s);
+      if (!inserted && it->second != s)
+        fail("mesh {} has rows in {} and {}: the shards overlap", row.front(),
+             shards[it->second].string(), shards[s].string());
+      std::vector<std::string> fields;
+      for (const std::string& f : row) fields.push_back(csvField(f));
+      out += fmt::format("{}\n", fmt::join(fields, ","));
+      ++rows;
+    }
+  }
+  writeTextFile(output, out);
+  return rows;
+}
+
 }  // namespace quadtri

@@ -147,4 +147,13 @@ void checkResumable(const RenderState& state, uint64_t key, int width, int heigh
         path, state.key, key);
 }
 
+uint64_t filmRenderKey(SceneDescription description, const RenderOptions& options,
+                       const std::optional<std::string>& modelOverride) {
+  FilmDesc& film = description.sensor.film;
+  film.cropX = film.cropY = 0;
+  film.cropWidth = film.width;
+  film.cropHeight = film.height;
+  return renderKey(description, options, modelOverride);
+}
+
 }  // namespace quadtri

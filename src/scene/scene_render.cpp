@@ -31,6 +31,19 @@ PreparedRender prepareSceneRender(const std::filesystem::path& file,
         request.warn(fmt::format(
             "-D {}={}: {} has no <default name=\"{}\">; the value reaches only a ${} in the file",
             name, value, file.string(), name, name));
+  if (request.crop && request.tile) fail("--crop and --tile: give one or the other");
+  if (request.crop || request.tile) {
+    FilmDesc& film = description.sensor.film;
+    const PixelWindow window =
+        request.crop ? *request.crop : tileWindow(*request.tile, film.width, film.height);
+    if (window.x + window.width > film.width || window.y + window.height > film.height)
+      fail("--crop {}: the window does not lie on the {}x{} film", window.toString(), film.width,
+           film.height);
+    film.cropX = window.x;
+    film.cropY = window.y;
+    film.cropWidth = window.width;
+    film.cropHeight = window.height;
+  }
   if (request.samplesPerPixel) overrideSamplesPerPixel(description, *request.samplesPerPixel);
   overrideNormals(description, request.normals, request.creaseAngleDegrees);
   prepared.built = buildScene(description, request.model, request.maxMemoryBytes);

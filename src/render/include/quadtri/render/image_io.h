@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "quadtri/math/color.h"
@@ -27,5 +29,21 @@ double linearToSrgb(double linear);
 /// returns how many channels were replaced so the caller can report them. Throws Error for an
 /// unknown extension or a failed write, naming the file.
 size_t writeImage(const Image& image, const std::filesystem::path& path);
+
+/// Where an image lies on its film, and the text attributes written with it.
+struct ImageFrame {
+  int x = 0, y = 0;  ///< the image's top-left pixel on the film (the EXR data window's origin)
+  /// The whole film (the EXR display window); 0: the image's own size.
+  int filmWidth = 0, filmHeight = 0;
+  /// name=value string attributes of the EXR header (a PNG does not keep them).
+  std::vector<std::pair<std::string, std::string>> attributes;
+  /// Whether the image is all of its film (a PNG holds nothing else).
+  bool wholeFilm(const Image& image) const;
+};
+
+/// writeImage with the image placed on its film: an EXR gets `frame`'s data and display windows
+/// and attributes. A PNG is refused (Error) unless the image is the whole film: it cannot say
+/// where a window lies.
+size_t writeImage(const Image& image, const std::filesystem::path& path, const ImageFrame& frame);
 
 }  // namespace quadtri

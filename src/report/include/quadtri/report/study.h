@@ -125,4 +125,11 @@ std::vector<std::filesystem::path> writeStudy(const std::filesystem::path& dir,
                                               const std::vector<StudyRow>& rows,
                                               const std::string& what);
 
+/// `quadtri merge SHARD.csv... -o study.csv`: the study.csv files of `--shard I/N` runs as one
+/// file, written atomically: every shard's header must be the first's (an Error names the
+/// shard), no mesh may have rows in two shards (an Error names the mesh and both files), and
+/// the rows follow in the order the files are given. Returns the number of rows.
+size_t mergeStudyShards(const std::vector<std::filesystem::path>& shards,
+                        const std::filesystem::path& output);
+
 }  // namespace quadtri

@@ -21,6 +21,11 @@ namespace quadtri {
 uint64_t renderKey(const SceneDescription& description, const RenderOptions& options,
                    const std::optional<std::string>& modelOverride);
 
+/// renderKey of the whole film: the same for every crop window (--crop, --tile) of one render,
+/// so that `quadtri merge` can tell the tiles of one render from those of another.
+uint64_t filmRenderKey(SceneDescription description, const RenderOptions& options,
+                       const std::optional<std::string>& modelOverride);
+
 /// Throws Error naming `path` unless `state` was saved by a render with this key and image
 /// size.
 void checkResumable(const RenderState& state, uint64_t key, int width, int height,
