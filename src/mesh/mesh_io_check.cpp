@@ -293,24 +293,38 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
   return info;
 }
 
-// Counts the occurrences of `token` in the file, reading it in blocks.
-uint64_t countToken(std::ifstream& in, std::string_view token) {
-  std::vector<char> block(size_t(1) << 20);
-  std::string carry;
-  uint64_t count = 0;
-  while (in) {
-    in.read(block.data(), std::streamsize(block.size()));
-    const size_t got = size_t(in.gcount());
-    if (got == 0) break;
-    std::string_view text(block.data(), got);
-    // A token split between blocks: the tail of the last block and the head of this one.
-    std::string seam = carry + std::string(text.substr(0, std::min(got, token.size() - 1)));
-    for (size_t i = seam.find(token); i != std::string::npos; i = seam.find(token, i + 1)) ++count;
-    for (size_t i = text.find(token); i != std::string_view::npos; i = text.find(token, i + 1))
-      ++count;
-    carry = std::string(text.substr(got - std::min(got, token.size() - 1)));
+bool parseFinite(std::string_view word);
+
+// ASCII STL: every facet ... endfacet holds exactly three `vertex` entries of three numbers
+// (Assimp leaks its mesh when it throws on one that does not); returns the facets.
+uint64_t checkAsciiStlFacets(std::ifstream& in, const std::string& name) {
+  uint64_t facets = 0;
+  int vertices = 0;
+  bool open = false;
+  std::string word;
+  while (in >> word) {
+    if (word == "facet") {
+      if (open)
+        fail("{}: facet {} starts before facet {} ends ('endfacet')", name, facets + 2, facets + 1);
+      open = true;
+      vertices = 0;
+    } else if (word == "vertex") {
+      if (!open || ++vertices > 3)
+        fail("{}: facet {}: a vertex {}, expected three inside each facet ... endfacet", name,
+             facets + 1, open ? "beyond the third" : "outside a facet");
+      for (int k = 0; k < 3; ++k)
+        if (!(in >> word) || !parseFinite(word))
+          fail("{}: facet {}, vertex {}: coordinate {} is not a finite number", name, facets + 1,
+               vertices, k + 1);
+    } else if (word == "endfacet") {
+      if (!open || vertices != 3)
+        fail("{}: facet {} has {} vertices, expected 3", name, facets + 1, vertices);
+      open = false;
+      ++facets;
+    }
   }
-  return count;
+  if (open) fail("{}: facet {} has no 'endfacet'", name, facets + 1);
+  return facets;
 }
 
 // STL: binary when the size is exactly 84 + 50 × the count at byte 80 (as Assimp decides, but
@@ -345,7 +359,7 @@ MeshFileInfo inspectStl(const std::filesystem::path& path, uint64_t fileBytes) {
     info.format = "STL ascii";
     in.clear();
     in.seekg(0);
-    info.faces = countToken(in, "endfacet");
+    info.faces = checkAsciiStlFacets(in, name);
   } else if (got == 84) {
     fail(
         "{}: the binary STL header declares {} triangles, which take 84 + 50 × {} = {} bytes; "
