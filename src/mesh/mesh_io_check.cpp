@@ -92,6 +92,54 @@ class WordReader {
   uint64_t offset_ = 0;
 };
 
+bool parseFinite(std::string_view word);
+std::vector<std::string_view> splitWords(std::string_view line);
+
+// The lines after an OFF header: `vertices` lines of at least `dims` finite numbers, then
+// `faces` lines "k i1 .. ik" with every index below `vertices` (blank lines and
+// '#' comments skipped). Assimp's OFF importer reads past its buffers on a short vertex line
+// and keeps out-of-range indices, so each is refused here with its line.
+void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint64_t dims,
+                  uint64_t vertices, uint64_t faces) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  uint64_t lineNo = 1;
+  for (uint64_t i = 0; i < headerBytes; ++i)
+    if (in.get() == '\n') ++lineNo;
+  std::string line;
+  std::getline(in, line);  // the rest of the line with the counts (the edge count)
+  uint64_t v = 0, f = 0;
+  while ((v < vertices || f < faces) && std::getline(in, line)) {
+    ++lineNo;
+    if (line.find('\0') != std::string::npos)
+      fail("{}:{}: a NUL byte in an OFF file", name, lineNo);
+    const std::vector<std::string_view> w = splitWords(line);
+    if (w.empty() || w[0][0] == '#') continue;
+    if (v < vertices) {
+      for (uint64_t k = 0; k < dims; ++k)
+        if (k >= w.size() || !parseFinite(w[k]))
+          fail("{}:{}: vertex {} needs {} finite coordinates: '{}'", name, lineNo, v, dims, line);
+      ++v;
+      continue;
+    }
+    const std::optional<uint64_t> k = parseCount(w[0]);
+    // A face "0" is skipped by Assimp (and refused by loadMesh if it reaches the scene).
+    if (!k || *k + 1 > w.size())
+      fail("{}:{}: face {}: expected a vertex count and that many indices: '{}'", name, lineNo, f,
+           line);
+    for (uint64_t j = 1; j <= *k; ++j) {
+      const std::optional<uint64_t> index = parseCount(w[j]);
+      if (!index || *index >= vertices)
+        fail("{}:{}: face {}: index '{}' is not a vertex (0 to {})", name, lineNo, f, w[j],
+             vertices - 1);
+    }
+    ++f;
+  }
+  if (v < vertices || f < faces)
+    fail("{}: the OFF header declares {} vertices and {} faces, the file holds {} and {}", name,
+         vertices, faces, v, f);
+}
+
 // OFF: [ST][C][N][4][n]OFF, [dimension], vertex count, face count, edge count, then one vertex
 // per line and one face "k i1 .. ik" per line (what Assimp's OFF importer reads).
 MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
@@ -148,6 +196,7 @@ MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
         name, *vertices, *faces, need, perVertex, perFace, fileBytes);
   checkAssimpCount(name, "OFF", *vertices, "vertices");
   checkAssimpCount(name, "OFF", *faces, "faces");
+  checkOffBody(path, headerBytes, dims, *vertices, *faces);
   MeshFileInfo info;
   info.format = "OFF";
   info.fileBytes = fileBytes;
