@@ -24,7 +24,9 @@ template <typename F>
 int runClean(F&& f) {
   try {
     f();
-  } catch (const Error&) {
+  } catch (const Error& e) {
+    // QUADTRI_FUZZ_VERBOSE=1 prints each refusal (to see what an input is refused for).
+    if (std::getenv("QUADTRI_FUZZ_VERBOSE")) std::fprintf(stderr, "refused: %s\n", e.what());
   }
   return 0;
 }
