@@ -104,10 +104,12 @@ void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint6
   const std::string name = path.string();
   std::ifstream in(path, std::ios::binary);
   uint64_t lineNo = 1;
+  int last = '\n';
   for (uint64_t i = 0; i < headerBytes; ++i)
-    if (in.get() == '\n') ++lineNo;
+    if ((last = in.get()) == '\n') ++lineNo;
   std::string line;
-  std::getline(in, line);  // the rest of the line with the counts (the edge count)
+  // The rest of the line with the counts (the edge count), unless the face count ended it.
+  if (last != '\n') std::getline(in, line);
   uint64_t v = 0, f = 0;
   while ((v < vertices || f < faces) && std::getline(in, line)) {
     ++lineNo;
