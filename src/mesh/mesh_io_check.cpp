@@ -96,7 +96,7 @@ bool parseFinite(std::string_view word);
 std::vector<std::string_view> splitWords(std::string_view line);
 
 // The lines after an OFF header: `vertices` lines of at least `dims` finite numbers, then
-// `faces` lines "k i1 .. ik" with every index below `vertices` (blank lines and
+// `faces` lines "k i1 .. ik" with k ≥ 1 and every index below `vertices` (blank lines and
 // '#' comments skipped). Assimp's OFF importer reads past its buffers on a short vertex line
 // and keeps out-of-range indices, so each is refused here with its line.
 void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint64_t dims,
@@ -125,10 +125,10 @@ void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint6
       continue;
     }
     const std::optional<uint64_t> k = parseCount(w[0]);
-    // A face "0" is skipped by Assimp (and refused by loadMesh if it reaches the scene).
-    if (!k || *k + 1 > w.size())
-      fail("{}:{}: face {}: expected a vertex count and that many indices: '{}'", name, lineNo, f,
-           line);
+    // A face "0": Assimp's importer reads out of bounds on it (fuzz_off).
+    if (!k || *k == 0 || *k + 1 > w.size())
+      fail("{}:{}: face {}: expected a vertex count of at least 1 and that many indices: '{}'",
+           name, lineNo, f, line);
     for (uint64_t j = 1; j <= *k; ++j) {
       const std::optional<uint64_t> index = parseCount(w[j]);
       if (!index || *index >= vertices)
