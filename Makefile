@@ -5,7 +5,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: setup build demo test sanitize format-check clean
+.PHONY: setup build demo test sanitize fuzz tsan format-check clean
 
 setup:
 	@./scripts/setup.sh
@@ -25,8 +25,21 @@ sanitize: setup
 	@cmake --build build-asan -j $(JOBS)
 	@cd build-asan && ctest --output-on-failure -j $(JOBS)
 
+# libFuzzer harnesses (README "Reliability"), each run for FUZZ_SECONDS.
+FUZZ_SECONDS ?= 60
+fuzz: setup
+	@JOBS=$(JOBS) ./scripts/fuzz.sh $(FUZZ_SECONDS)
+
+# ThreadSanitizer (clang): the tests that run threads (tile scheduler, progress bar, adaptive
+# sampler, parallel conversion, studies). TSAN_TESTS is a ctest -R pattern.
+TSAN_TESTS ?= ^(Renderer|SceneRenderTest|RenderScene|Study|ConvertOutput|StopSignals|AtomicFile|CrackRate|Metrics|Convergence|RenderCheckpoint|RenderSignals)\.
+tsan: setup
+	@CC=clang CXX=clang++ cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQUADTRI_TSAN=ON -DQUADTRI_BENCH=OFF -DQUADTRI_PYTHON=OFF >/dev/null
+	@cmake --build build-tsan -j $(JOBS) --target quadtri_tests quadtri
+	@cd build-tsan && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/scripts/tsan.supp" ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
+
 format-check:
 	@clang-format --dry-run --Werror $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD) build-asan out
+	rm -rf $(BUILD) build-asan build-fuzz build-tsan out

@@ -36,7 +36,8 @@ std::string lowerExtension(const std::filesystem::path& p) {
 TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals,
                       MemoryBudget* budget) {
   const std::string name = path.string();
-  if (!std::filesystem::exists(path)) fail("{}: no such file", name);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail("{}: no such file", name);
   const std::string ext = lowerExtension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
     fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
@@ -47,8 +48,25 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      name, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices);
+  // Read first, check every face, then post-process: Assimp's importers keep an index a file
+  // gives beyond its vertices (a binary PLY face list longer than the file) and an OFF face of
+  // no vertices, and its post-processing steps then read out of bounds or abort.
+  const aiScene* scene = importer.ReadFile(name, 0);
+  if (!scene || !scene->mRootNode)
+    fail("{}: cannot read mesh ({})", name, importer.GetErrorString());
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* am = scene->mMeshes[m];
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices == 0) fail("{}: face {} of mesh {} has no vertices", name, f, m);
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= am->mNumVertices)
+          fail("{}: face {} of mesh {} refers to vertex {}, but the mesh has {} vertices", name, f,
+               m, face.mIndices[k], am->mNumVertices);
+    }
+  }
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
+                                       aiProcess_PreTransformVertices);
   if (!scene || !scene->mRootNode)
     fail("{}: cannot read mesh ({})", name, importer.GetErrorString());
   TriangleMesh mesh;
@@ -81,6 +99,10 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];
       if (face.mNumIndices != 3) continue;
+      for (unsigned k = 0; k < 3; ++k)
+        if (face.mIndices[k] >= am->mNumVertices)
+          fail("{}: face {} of mesh {} refers to vertex {}, but the mesh has {} vertices", name, f,
+               m, face.mIndices[k], am->mNumVertices);
       mesh.triangles.push_back(
           {pos[face.mIndices[0]], pos[face.mIndices[1]], pos[face.mIndices[2]]});
       if (allHaveNormals) {
@@ -173,23 +195,28 @@ namespace quadtri {
 
 BuiltinMesh loadMeshSpec(const std::string& spec, const NormalOptions& normals,
                          MemoryBudget* budget) {
-  if (std::filesystem::exists(spec)) {
+  // Not the throwing exists(): a spec too long for a file name is still a spec.
+  std::error_code ec;
+  if (std::filesystem::exists(spec, ec)) {
     BuiltinMesh b;
     b.mesh = loadMesh(spec, normals, budget);
     b.description = std::filesystem::path(spec).filename().string();
     return b;
   }
-  std::optional<BuiltinMesh> b = parseBuiltinSpec(spec);
-  if (!b) {
+  const std::optional<ShapeSpec> shape = parseShapeSpec(spec);
+  if (!shape) {
     fail("{}: no such file, and not a built-in shape (expected a mesh file or one of {})", spec,
          fmt::join(builtinShapeNames(), ", "));
   }
+  // Charged before it is built: a spec such as cube:1024 must be refused, not built.
+  const uint64_t triangles = builtinTriangleCount(*shape);
   if (budget)
-    chargeMemory(*budget, uint64_t(b->mesh.triangleCount()) * budget->bytesPerTriangle, spec,
+    chargeMemory(*budget, triangles * budget->bytesPerTriangle, spec,
                  fmt::format("building {} per triangle of its {} triangles",
-                             formatBytes(budget->bytesPerTriangle), b->mesh.triangleCount()));
-  applyNormals(b->mesh, normals);  // File keeps the shape's analytic normals
-  return std::move(*b);
+                             formatBytes(budget->bytesPerTriangle), triangles));
+  BuiltinMesh b = makeBuiltin(shape->name, shape->params);
+  applyNormals(b.mesh, normals);  // File keeps the shape's analytic normals
+  return b;
 }
 
 }  // namespace quadtri

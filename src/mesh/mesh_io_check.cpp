@@ -92,6 +92,56 @@ class WordReader {
   uint64_t offset_ = 0;
 };
 
+bool parseFinite(std::string_view word);
+std::vector<std::string_view> splitWords(std::string_view line);
+
+// The lines after an OFF header: `vertices` lines of at least `dims` finite numbers, then
+// `faces` lines "k i1 .. ik" with k ≥ 1 and every index below `vertices` (blank lines and
+// '#' comments skipped). Assimp's OFF importer reads past its buffers on a short vertex line
+// and keeps out-of-range indices, so each is refused here with its line.
+void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint64_t dims,
+                  uint64_t vertices, uint64_t faces) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  uint64_t lineNo = 1;
+  int last = '\n';
+  for (uint64_t i = 0; i < headerBytes; ++i)
+    if ((last = in.get()) == '\n') ++lineNo;
+  std::string line;
+  // The rest of the line with the counts (the edge count), unless the face count ended it.
+  if (last != '\n') std::getline(in, line);
+  uint64_t v = 0, f = 0;
+  while ((v < vertices || f < faces) && std::getline(in, line)) {
+    ++lineNo;
+    if (line.find('\0') != std::string::npos)
+      fail("{}:{}: a NUL byte in an OFF file", name, lineNo);
+    const std::vector<std::string_view> w = splitWords(line);
+    if (w.empty() || w[0][0] == '#') continue;
+    if (v < vertices) {
+      for (uint64_t k = 0; k < dims; ++k)
+        if (k >= w.size() || !parseFinite(w[k]))
+          fail("{}:{}: vertex {} needs {} finite coordinates: '{}'", name, lineNo, v, dims, line);
+      ++v;
+      continue;
+    }
+    const std::optional<uint64_t> k = parseCount(w[0]);
+    // A face "0": Assimp's importer reads out of bounds on it (fuzz_off).
+    if (!k || *k == 0 || *k + 1 > w.size())
+      fail("{}:{}: face {}: expected a vertex count of at least 1 and that many indices: '{}'",
+           name, lineNo, f, line);
+    for (uint64_t j = 1; j <= *k; ++j) {
+      const std::optional<uint64_t> index = parseCount(w[j]);
+      if (!index || *index >= vertices)
+        fail("{}:{}: face {}: index '{}' is not a vertex (0 to {})", name, lineNo, f, w[j],
+             vertices - 1);
+    }
+    ++f;
+  }
+  if (v < vertices || f < faces)
+    fail("{}: the OFF header declares {} vertices and {} faces, the file holds {} and {}", name,
+         vertices, faces, v, f);
+}
+
 // OFF: [ST][C][N][4][n]OFF, [dimension], vertex count, face count, edge count, then one vertex
 // per line and one face "k i1 .. ik" per line (what Assimp's OFF importer reads).
 MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
@@ -148,6 +198,7 @@ MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
         name, *vertices, *faces, need, perVertex, perFace, fileBytes);
   checkAssimpCount(name, "OFF", *vertices, "vertices");
   checkAssimpCount(name, "OFF", *faces, "faces");
+  checkOffBody(path, headerBytes, dims, *vertices, *faces);
   MeshFileInfo info;
   info.format = "OFF";
   info.fileBytes = fileBytes;
@@ -293,24 +344,38 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
   return info;
 }
 
-// Counts the occurrences of `token` in the file, reading it in blocks.
-uint64_t countToken(std::ifstream& in, std::string_view token) {
-  std::vector<char> block(size_t(1) << 20);
-  std::string carry;
-  uint64_t count = 0;
-  while (in) {
-    in.read(block.data(), std::streamsize(block.size()));
-    const size_t got = size_t(in.gcount());
-    if (got == 0) break;
-    std::string_view text(block.data(), got);
-    // A token split between blocks: the tail of the last block and the head of this one.
-    std::string seam = carry + std::string(text.substr(0, std::min(got, token.size() - 1)));
-    for (size_t i = seam.find(token); i != std::string::npos; i = seam.find(token, i + 1)) ++count;
-    for (size_t i = text.find(token); i != std::string_view::npos; i = text.find(token, i + 1))
-      ++count;
-    carry = std::string(text.substr(got - std::min(got, token.size() - 1)));
+bool parseFinite(std::string_view word);
+
+// ASCII STL: every facet ... endfacet holds exactly three `vertex` entries of three numbers
+// (Assimp leaks its mesh when it throws on one that does not); returns the facets.
+uint64_t checkAsciiStlFacets(std::ifstream& in, const std::string& name) {
+  uint64_t facets = 0;
+  int vertices = 0;
+  bool open = false;
+  std::string word;
+  while (in >> word) {
+    if (word == "facet") {
+      if (open)
+        fail("{}: facet {} starts before facet {} ends ('endfacet')", name, facets + 2, facets + 1);
+      open = true;
+      vertices = 0;
+    } else if (word == "vertex") {
+      if (!open || ++vertices > 3)
+        fail("{}: facet {}: a vertex {}, expected three inside each facet ... endfacet", name,
+             facets + 1, open ? "beyond the third" : "outside a facet");
+      for (int k = 0; k < 3; ++k)
+        if (!(in >> word) || !parseFinite(word))
+          fail("{}: facet {}, vertex {}: coordinate {} is not a finite number", name, facets + 1,
+               vertices, k + 1);
+    } else if (word == "endfacet") {
+      if (!open || vertices != 3)
+        fail("{}: facet {} has {} vertices, expected 3", name, facets + 1, vertices);
+      open = false;
+      ++facets;
+    }
   }
-  return count;
+  if (open) fail("{}: facet {} has no 'endfacet'", name, facets + 1);
+  return facets;
 }
 
 // STL: binary when the size is exactly 84 + 50 × the count at byte 80 (as Assimp decides, but
@@ -345,7 +410,7 @@ MeshFileInfo inspectStl(const std::filesystem::path& path, uint64_t fileBytes) {
     info.format = "STL ascii";
     in.clear();
     in.seekg(0);
-    info.faces = countToken(in, "endfacet");
+    info.faces = checkAsciiStlFacets(in, name);
   } else if (got == 84) {
     fail(
         "{}: the binary STL header declares {} triangles, which take 84 + 50 × {} = {} bytes; "

@@ -393,6 +393,25 @@ const std::vector<std::string>& builtinShapeNames() {
   return names;
 }
 
+namespace {
+
+/// Segments × rings of a uv-sphere, torus or cylinder: at most kMaxGridCells (2·that many
+/// triangles, about an icosphere of level 8), so that no spec builds more than memory holds.
+constexpr int64_t kMaxGridCells = int64_t(1) << 20;
+
+void checkGridSize(std::string_view shape, int segments, int rings) {
+  if (int64_t(segments) * int64_t(rings) > kMaxGridCells)
+    fail("{} of {} segments and {} rings is too fine: segments x rings must be at most {}", shape,
+         segments, rings, kMaxGridCells);
+}
+
+/// Lengths (radii) must be finite and within 1e-6 to 1e6, the scales quadtri is tested at.
+void checkLength(std::string_view what, double x) {
+  if (!(x >= 1e-6 && x <= 1e6)) fail("{} {} is out of range: expected 1e-6 to 1e6", what, x);
+}
+
+}  // namespace
+
 BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
   BuiltinMesh b;
   const AnalyticSurface unitSphere{AnalyticSurface::Kind::Sphere, 1, 1, 1};
@@ -428,12 +447,17 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
   } else if (name == "uv-sphere") {
     if (params.segments < 3 || params.rings < 2)
       fail("uv-sphere needs at least 3 segments and 2 rings");
+    checkGridSize("uv-sphere", params.segments, params.rings);
     b.mesh = uvSphereMesh(params.segments, params.rings);
     b.truth = unitSphere;
     b.description = fmt::format("uv-sphere {}x{}", params.segments, params.rings);
   } else if (name == "ellipsoid") {
     const Vec3& r = params.radii;
     if (!(r.minCoeff() > 0)) fail("ellipsoid radii must be positive");
+    checkLength("ellipsoid radius", r.minCoeff());
+    checkLength("ellipsoid radius", r.maxCoeff());
+    if (params.level < 0 || params.level > 8)
+      fail("ellipsoid level {} is out of range: expected 0 to 8", params.level);
     b.mesh = icosahedron();
     for (int i = 0; i < params.level; ++i) b.mesh = subdivideOnSphere(b.mesh);
     for (Vec3& p : b.mesh.positions) p = p.cwiseProduct(r);
@@ -443,6 +467,9 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
     if (!(params.major > params.minor && params.minor > 0)) fail("torus needs major > minor > 0");
     if (params.segments < 3 || params.rings < 3)
       fail("torus needs at least 3 segments and 3 rings");
+    checkLength("torus major radius", params.major);
+    checkLength("torus minor radius", params.minor);
+    checkGridSize("torus", params.segments, params.rings);
     b.mesh = torusMesh(params.major, params.minor, params.segments, params.rings);
     b.truth = AnalyticSurface{AnalyticSurface::Kind::Torus, params.major, params.minor, 0};
     b.description = fmt::format("torus R={} r={} {}x{}", params.major, params.minor,
@@ -459,6 +486,7 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
       fail("cube divisions {} is out of range: expected 1 to 1024", params.divisions);
     if (!cube && (params.segments < 3 || params.rings < 1))
       fail("cylinder needs at least 3 segments and 1 ring");
+    if (!cube) checkGridSize("cylinder", params.segments, params.rings);
     b.mesh = cube ? cubeMesh(params.divisions) : cylinderMesh(params.segments, params.rings);
     b.truth = AnalyticSurface{cube ? AnalyticSurface::Kind::Box : AnalyticSurface::Kind::Cylinder,
                               1, 1, 1};
@@ -476,7 +504,7 @@ BuiltinMesh makeBuiltin(std::string_view name, const ShapeParams& params) {
   return b;
 }
 
-std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
+std::optional<ShapeSpec> parseShapeSpec(std::string_view spec) {
   const size_t colon = spec.find(':');
   const std::string_view name = spec.substr(0, colon);
   const auto& names = builtinShapeNames();
@@ -485,24 +513,31 @@ std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
                                     ? std::vector<double>{}
                                     : parseNumbers(spec, spec.substr(colon + 1));
   ShapeParams p;
+  // A count must be a whole number that fits an int (a cast of 1e300 or NaN is undefined);
+  // makeBuiltin checks its range.
+  auto count = [&](size_t i) {
+    if (!(v[i] == std::floor(v[i]) && std::abs(v[i]) <= 1e9))
+      fail("built-in shape '{}': number {} ({}) must be a whole number", spec, i + 1, v[i]);
+    return int(v[i]);
+  };
   auto need = [&](size_t lo, size_t hi) {
     if (v.size() < lo || v.size() > hi)
       fail("built-in shape '{}': expected {} to {} numbers after ':'", spec, lo, hi);
   };
   if (name == "icosphere") {
     need(0, 1);
-    if (!v.empty()) p.level = int(v[0]);
+    if (!v.empty()) p.level = count(0);
   } else if (name == "uv-sphere") {
     need(0, 2);
-    if (v.size() > 0) p.segments = int(v[0]);
-    if (v.size() > 1) p.rings = int(v[1]);
+    if (v.size() > 0) p.segments = count(0);
+    if (v.size() > 1) p.rings = count(1);
   } else if (name == "ellipsoid") {
     need(0, 4);
     if (v.size() >= 3)
       p.radii = Vec3(v[0], v[1], v[2]);
     else if (!v.empty())
       fail("built-in shape '{}': an ellipsoid takes three radii (and a level)", spec);
-    if (v.size() == 4) p.level = int(v[3]);
+    if (v.size() == 4) p.level = count(3);
   } else if (name == "torus") {
     need(0, 4);
     if (v.size() >= 2) {
@@ -510,22 +545,46 @@ std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
       p.minor = v[1];
     } else if (!v.empty())
       fail("built-in shape '{}': a torus takes R,r (and segments,rings)", spec);
-    if (v.size() >= 3) p.segments = int(v[2]);
-    if (v.size() >= 4) p.rings = int(v[3]);
+    if (v.size() >= 3) p.segments = count(2);
+    if (v.size() >= 4) p.rings = count(3);
   } else if (name == "genus2") {
     need(0, 1);
-    if (!v.empty()) p.cells = int(v[0]);
+    if (!v.empty()) p.cells = count(0);
   } else if (name == "cube") {
     need(0, 1);
-    if (!v.empty()) p.divisions = int(v[0]);
+    if (!v.empty()) p.divisions = count(0);
   } else if (name == "cylinder") {
     need(0, 2);
-    if (v.size() > 0) p.segments = int(v[0]);
-    if (v.size() > 1) p.rings = int(v[1]);
+    if (v.size() > 0) p.segments = count(0);
+    if (v.size() > 1) p.rings = count(1);
   } else {
     need(0, 0);
   }
-  return makeBuiltin(name, p);
+  return ShapeSpec{std::string(name), p};
+}
+
+std::optional<BuiltinMesh> parseBuiltinSpec(std::string_view spec) {
+  const std::optional<ShapeSpec> shape = parseShapeSpec(spec);
+  if (!shape) return std::nullopt;
+  return makeBuiltin(shape->name, shape->params);
+}
+
+uint64_t builtinTriangleCount(const ShapeSpec& shape) {
+  const ShapeParams& p = shape.params;
+  const std::string& name = shape.name;
+  const auto grid = [](int a, int b) -> uint64_t {
+    return a > 0 && b > 0 ? 2 * uint64_t(a) * uint64_t(b) : 0;
+  };
+  if (name == "triangle") return 1;
+  if (name == "tetrahedron") return 4;
+  if (name == "icosahedron") return 20;
+  if (name == "icosphere" || name == "ellipsoid")
+    return p.level >= 0 && p.level <= 8 ? uint64_t(20) << (2 * p.level) : 0;
+  if (name == "uv-sphere" || name == "torus") return grid(p.segments, p.rings);
+  if (name == "cylinder") return grid(p.segments, p.rings + 1);  // the side and two fans
+  if (name == "cube") return 6 * grid(p.divisions, p.divisions);
+  if (name == "genus2") return p.cells > 0 ? 16 * uint64_t(p.cells) * uint64_t(p.cells) : 0;
+  return 0;
 }
 
 }  // namespace quadtri

@@ -1,5 +1,6 @@
 #include "quadtri/render/render_state.h"
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -76,7 +77,9 @@ RenderState loadRenderState(const std::filesystem::path& path) {
   state.height = int(get<uint32_t>(header, offset));
   state.key = get<uint64_t>(header, offset);
   const uint64_t n = uint64_t(uint32_t(state.width)) * uint64_t(uint32_t(state.height));
-  if (state.width <= 0 || state.height <= 0 || size != kHeaderBytes + n * kPixelBytes)
+  // n ≤ size / kPixelBytes first: the product below cannot wrap for a lying header.
+  if (state.width <= 0 || state.height <= 0 || n > size / kPixelBytes ||
+      size != kHeaderBytes + n * kPixelBytes)
     fail("{}: render state of {}x{} pixels should take {} bytes, the file has {}", name,
          state.width, state.height, kHeaderBytes + n * kPixelBytes, size);
   std::string body(size - kHeaderBytes, '\0');
@@ -86,8 +89,14 @@ RenderState loadRenderState(const std::filesystem::path& path) {
   state.samples.resize(n);
   state.pixels.resize(n, Color::Zero());
   for (uint32_t& s : state.samples) s = get<uint32_t>(body, offset);
-  for (Color& c : state.pixels)
-    for (int k = 0; k < 3; ++k) c[k] = get<double>(body, offset);
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double v = get<double>(body, offset);
+      if (!std::isfinite(v))
+        fail("{}: render state pixel {} (x {}, y {}) has a non-finite value", name, i,
+             i % size_t(state.width), i / size_t(state.width));
+      state.pixels[i][k] = v;
+    }
   return state;
 }
 

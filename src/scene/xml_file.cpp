@@ -18,6 +18,18 @@ XmlFile::XmlFile(std::string_view text, std::filesystem::path path) : path_(std:
     fail("{}:{}: XML syntax error: {}", path_.string(), lineOf(result.offset),
          result.description());
   if (!doc_.document_element()) fail("{}:1: no root element", path_.string());
+  // The scene's readers walk elements recursively: a nesting deeper than any scene needs is
+  // refused here, by an iterative walk, before it can overflow their stack.
+  std::vector<std::pair<pugi::xml_node, int>> stack{{doc_.document_element(), 1}};
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    if (depth > kMaxXmlDepth)
+      fail("{}:{}: elements nest deeper than {} levels", path_.string(),
+           lineOf(node.offset_debug()), kMaxXmlDepth);
+    for (pugi::xml_node child : node.children())
+      if (child.type() == pugi::node_element) stack.emplace_back(child, depth + 1);
+  }
 }
 
 size_t XmlFile::lineOf(ptrdiff_t offset) const {

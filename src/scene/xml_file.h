@@ -16,6 +16,9 @@ namespace quadtri {
 
 /// A parsed XML document together with the line starts of its text, so that every node can be
 /// named as "FILE:LINE".
+/// Elements nest at most this deep (a scene needs about 6); deeper is refused as the file is read.
+inline constexpr int kMaxXmlDepth = 64;
+
 class XmlFile {
  public:
   /// Parses `text`; a syntax error throws Error "FILE:LINE: <pugixml's description>".

@@ -80,8 +80,9 @@ TEST(MeshIoCheck, OffCountsOverTheFileSizeAreRefused) {
   const fs::path coff =
       writeFile("big.coff.off", "# colours\nCOFF\n100 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 2\n");
   expectContains(refusal([&] { inspectMeshFile(coff); }), {"100 vertices", "8 per vertex"});
-  // Close to the least size passes: 3 vertices "0 0 0", one face "0", no last newline.
-  const fs::path tight = writeFile("tight.off", "OFF 3 1 0\n0 0 0\n0 0 0\n0 0 0\n0");
+  // Close to the least size passes: 3 vertices "0 0 0", one face "1 0", no last newline (a
+  // face "0" is refused: Assimp's importer reads out of bounds on it).
+  const fs::path tight = writeFile("tight.off", "OFF 3 1 0\n0 0 0\n0 0 0\n0 0 0\n1 0");
   EXPECT_EQ(inspectMeshFile(tight).vertices, 3u);
   expectContains(refusal([&] { inspectMeshFile(writeFile("bad.off", "OFF\nx 1 0\n")); }),
                  {"bad.off", "expected the vertex and face counts"});
@@ -179,8 +180,9 @@ TEST(MeshIoCheck, CountsOfValidFiles) {
 TEST(MeshIoCheck, AssimpTestModelsPassThePrePass) {
   // The pre-pass must not refuse what Assimp reads: of every OBJ/PLY/STL/OFF in
   // assimp-testmodels, it refuses only pond.0.ply, whose body is 69 bytes short of its
-  // header's 70,051 vertices (a point cloud Assimp does not load either), and
-  // number_formats.obj, which OBJ's validating pass refused before (line 11: "3.1+e2").
+  // header's 70,051 vertices (a point cloud Assimp does not load either),
+  // number_formats.obj, which OBJ's validating pass refused before (line 11: "3.1+e2"), and
+  // OFF/invalid.off, whose 4 declared faces are 3 lines, one "2\r20" (the OFF body check).
   if (!fs::exists(kAssimpModels)) GTEST_SKIP() << kAssimpModels << " absent (assimp-testmodels)";
   std::vector<std::string> refused;
   int loaded = 0;
@@ -210,7 +212,8 @@ TEST(MeshIoCheck, AssimpTestModelsPassThePrePass) {
       }
     }
   std::sort(refused.begin(), refused.end());
-  EXPECT_EQ(refused, (std::vector<std::string>{"OBJ/number_formats.obj", "PLY/pond.0.ply"}));
+  EXPECT_EQ(refused, (std::vector<std::string>{"OBJ/number_formats.obj", "OFF/invalid.off",
+                                               "PLY/pond.0.ply"}));
   EXPECT_GE(loaded, 20);
 }
 
@@ -259,6 +262,45 @@ TEST(MemoryLimit, ByteSizes) {
   EXPECT_EQ(formatBytes(uint64_t(300) << 20), "300 MiB");
   EXPECT_GT(physicalMemoryBytes(), uint64_t(64) << 20);
   EXPECT_EQ(defaultMemoryLimit(), uint64_t(double(physicalMemoryBytes()) * kDefaultMemoryShare));
+}
+
+// Inputs the fuzzers found (fuzz/, tests/fuzz-regressions/): each is a clean error now.
+TEST(MeshIoCheck, FuzzFindingsAreCleanErrors) {
+  // An OFF vertex line short of coordinates: Assimp's importer read out of bounds.
+  expectContains(
+      refusal([&] {
+        loadMesh(writeFile("short.off", "OFF\n3 1 0\n0 0 0\n-0.5 0..5\n0 1 0\n3 0 1 2\n"));
+      }),
+      {"short.off:4: vertex 1 needs 3 finite coordinates"});
+  // A binary PLY face whose index lies past the vertices: Assimp's post-processing read out of
+  // bounds.
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) ply += bytesOf(v);
+  ply +=
+      std::string(1, char(3)) + bytesOf(int32_t(0)) + bytesOf(int32_t(1)) + bytesOf(int32_t(70000));
+  expectContains(refusal([&] { loadMesh(writeFile("far-index.ply", ply)); }),
+                 {"far-index.ply: face 0 of mesh 0 refers to vertex 70000, but the mesh has 3"});
+  // An ASCII STL facet of two vertices.
+  expectContains(refusal([&] {
+                   loadMesh(writeFile("two.stl",
+                                      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                                      "vertex 1 0 0\nendloop\nendfacet\nendsolid t\n"));
+                 }),
+                 {"two.stl: facet 1 has 2 vertices, expected 3"});
+  // Shape specs: a count that is no whole number, a grid too fine, a radius out of range, a
+  // shape over the budget (refused before it is built), a spec too long for a file name.
+  expectContains(refusal([] { loadMeshSpec("uv-sphere:1e300,4"); }), {"must be a whole number"});
+  expectContains(refusal([] { loadMeshSpec("torus:1,0.3,100000,100000"); }), {"too fine"});
+  expectContains(refusal([] { loadMeshSpec("ellipsoid:1e300,1,1"); }), {"out of range"});
+  MemoryBudget budget;
+  budget.maxBytes = uint64_t(64) << 20;
+  budget.bytesPerTriangle = 512;
+  expectContains(refusal([&] { loadMeshSpec("cube:1024", {}, &budget); }),
+                 {"cube:1024", "12582912 triangles"});
+  EXPECT_NE(refusal([] { loadMeshSpec("uv-sphere:" + std::string(5000, '9')); }), "");
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Checkpoints and resuming: a resumed render is the uninterrupted one, bit for bit.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -152,6 +153,22 @@ TEST(RenderState, MismatchedStatesAndFilesAreRefused) {
   }
   std::ofstream(file, std::ios::binary) << std::string(64, 'x');
   EXPECT_THROW(loadRenderState(file), Error);
+
+  // A saved state whose pixel is NaN (found by fuzz_render_state): refused, naming the pixel.
+  RenderState nan;
+  nan.width = 2;
+  nan.height = 1;
+  nan.samples = {4, 4};
+  nan.pixels = {Color(0.5, 0.5, 0.5), Color(0.5, std::nan(""), 0.5)};
+  saveRenderState(nan, file);
+  try {
+    loadRenderState(file);
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pixel 1 (x 1, y 0) has a non-finite value"),
+              std::string::npos)
+        << e.what();
+  }
   fs::remove(file);
 }
 

@@ -71,6 +71,17 @@ Mat4 shapeTransform(const std::string& transformBody) {
   return s.shapes.at(0).toWorld;
 }
 
+TEST(Scene, DeepNestingIsAnErrorNotAStackOverflow) {
+  // 100,000 nested elements: refused by an iterative walk before any recursive reader.
+  std::string xml = "<scene version=\"3.0.0\">";
+  const int depth = 100000;
+  for (int i = 0; i < depth; ++i) xml += "<bsdf type=\"diffuse\">";
+  for (int i = 0; i < depth; ++i) xml += "</bsdf>";
+  xml += "</scene>";
+  EXPECT_NE(errorOf(xml).find("test.xml:1: elements nest deeper than 64 levels"), std::string::npos)
+      << errorOf(xml);
+}
+
 TEST(SceneSensor, LookAtMapsOriginAndViewDirection) {
   const SceneDescription s = parse(R"(
     <sensor type="perspective">
