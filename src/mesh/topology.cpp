@@ -1,25 +1,69 @@
 #include "quadtri/mesh/topology.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
-#include <unordered_map>
 
 namespace quadtri {
 
 MeshTopology::MeshTopology(const TriangleMesh& mesh) {
-  std::unordered_map<uint64_t, uint32_t> index;
-  index.reserve(mesh.triangles.size() * 2);
-  edgeOf.resize(mesh.triangles.size());
-  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (uint8_t k = 0; k < 3; ++k) {
+  const size_t triangles = mesh.triangles.size();
+  const size_t halves = 3 * triangles;
+  // Half-edge h = 3t + k, keyed by its undirected edge; sorting (key, h) pairs, all distinct,
+  // gives one order whatever the thread count.
+  struct Half {
+    uint64_t key;
+    uint32_t h;
+    bool operator<(const Half& o) const { return key != o.key ? key < o.key : h < o.h; }
+  };
+  std::vector<Half> sorted(halves);
+  tbb::parallel_for(size_t(0), triangles, [&](size_t t) {
+    for (int k = 0; k < 3; ++k) {
       uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
       if (a > b) std::swap(a, b);
-      const uint64_t key = (uint64_t(a) << 32) | b;
-      auto [it, inserted] = index.try_emplace(key, uint32_t(edges.size()));
-      if (inserted) edges.push_back(Edge{a, b, {}});
-      edges[it->second].sides.emplace_back(t, k);
-      edgeOf[t][k] = it->second;
+      sorted[3 * t + k] = Half{(uint64_t(a) << 32) | b, uint32_t(3 * t + k)};
+    }
+  });
+  tbb::parallel_sort(sorted.begin(), sorted.end());
+  // leader[h]: the first half-edge (least h) of h's edge. Edges are numbered by their leader.
+  std::vector<uint32_t> leader(halves);
+  std::vector<uint32_t> groupSize(halves, 0);
+  for (size_t i = 0; i < halves;) {
+    size_t j = i + 1;
+    while (j < halves && sorted[j].key == sorted[i].key) ++j;
+    const uint32_t first = sorted[i].h;
+    for (size_t g = i; g < j; ++g) leader[sorted[g].h] = first;
+    groupSize[first] = uint32_t(j - i);
+    i = j;
+  }
+  std::vector<uint32_t> edgeId(halves, 0);
+  size_t edgeCount = 0;
+  for (size_t h = 0; h < halves; ++h)
+    if (leader[h] == h) edgeId[h] = uint32_t(edgeCount++);
+  edges.resize(edgeCount);
+  std::vector<size_t> offset(edgeCount + 1, 0);
+  for (size_t h = 0; h < halves; ++h)
+    if (leader[h] == h) offset[edgeId[h] + 1] = groupSize[h];
+  for (size_t e = 0; e < edgeCount; ++e) offset[e + 1] += offset[e];
+  sides_.resize(halves);
+  edgeOf.resize(triangles);
+  std::vector<size_t> fill(offset.begin(), offset.end() - 1);
+  for (size_t h = 0; h < halves; ++h) {
+    const uint32_t e = edgeId[leader[h]];
+    const uint32_t t = uint32_t(h / 3);
+    const uint8_t k = uint8_t(h % 3);
+    sides_[fill[e]++] = EdgeSide(t, k);
+    edgeOf[t][k] = e;
+    if (leader[h] == h) {
+      uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      if (a > b) std::swap(a, b);
+      edges[e].a = a;
+      edges[e].b = b;
     }
   }
+  for (size_t e = 0; e < edgeCount; ++e)
+    edges[e].sides = EdgeSides(sides_.data() + offset[e], sides_.data() + offset[e + 1]);
 }
 
 size_t MeshTopology::boundaryEdgeCount() const {

@@ -1,5 +1,8 @@
 #include "quadtri/surface/creases.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/QR>
 #include <cmath>
 
@@ -61,23 +64,30 @@ EdgeEnds edgeEnds(const TriangleMesh& mesh) {
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
   EdgeEnds out(mesh.triangleCount());
   if (!mesh.hasNormals()) return out;
-  std::vector<Vec3> na, nb;
-  for (const Edge& edge : topo.edges) {
-    na.clear();
-    nb.clear();
-    for (auto [t, k] : edge.sides) {
-      const bool forward = mesh.triangles[t][k] == edge.a;
-      const int ka = forward ? k : (k + 1) % 3, kb = forward ? (k + 1) % 3 : k;
-      na.push_back(safeNormalized(mesh.cornerNormal(t, ka), mesh.faceNormal(t)));
-      nb.push_back(safeNormalized(mesh.cornerNormal(t, kb), mesh.faceNormal(t)));
-    }
-    const Vec3 chord = mesh.positions[edge.b] - mesh.positions[edge.a];
-    const EdgeEnd a = classifyEnd(na, chord), b = classifyEnd(nb, chord);
-    for (auto [t, k] : edge.sides) {
-      const bool forward = mesh.triangles[t][k] == edge.a;
-      out[t][k] = forward ? std::array<EdgeEnd, 2>{a, b} : std::array<EdgeEnd, 2>{b, a};
-    }
-  }
+  // Each edge writes only its own sides' slots: edges are independent, and the result does not
+  // depend on the thread count. The normals' buffers are reused within a block of edges.
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
+      [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<Vec3> na, nb;
+        for (size_t e = range.begin(); e != range.end(); ++e) {
+          const Edge& edge = topo.edges[e];
+          na.clear();
+          nb.clear();
+          for (auto [t, k] : edge.sides) {
+            const bool forward = mesh.triangles[t][k] == edge.a;
+            const int ka = forward ? k : (k + 1) % 3, kb = forward ? (k + 1) % 3 : k;
+            na.push_back(safeNormalized(mesh.cornerNormal(t, ka), mesh.faceNormal(t)));
+            nb.push_back(safeNormalized(mesh.cornerNormal(t, kb), mesh.faceNormal(t)));
+          }
+          const Vec3 chord = mesh.positions[edge.b] - mesh.positions[edge.a];
+          const EdgeEnd a = classifyEnd(na, chord), b = classifyEnd(nb, chord);
+          for (auto [t, k] : edge.sides) {
+            const bool forward = mesh.triangles[t][k] == edge.a;
+            out[t][k] = forward ? std::array<EdgeEnd, 2>{a, b} : std::array<EdgeEnd, 2>{b, a};
+          }
+        }
+      });
   return out;
 }
 

@@ -106,7 +106,12 @@ Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, cons
 
 std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
                                                    std::vector<uint8_t>* gaveUpPatches) {
-  const MeshTopology topo(mesh);
+  return edgeControlPoints(mesh, MeshTopology(mesh), gaveUpPatches);
+}
+
+std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
+                                                   const MeshTopology& topo,
+                                                   std::vector<uint8_t>* gaveUpPatches) {
   const EdgeEnds ends = edgeEnds(mesh, topo);
   std::vector<std::array<Vec3, 3>> out(mesh.triangleCount());
   std::vector<uint8_t> gaveUpEdges(gaveUpPatches ? topo.edges.size() : 0, 0);

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 
 namespace quadtri {
 namespace {
@@ -157,10 +158,19 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
     Vec3 c = Vec3::Zero();
     for (int v : face) c += cell.vertices[size_t(v)];
     c /= double(face.size());
-    std::sort(face.begin(), face.end(), [&](int a, int b) {
-      const Vec3 pa = cell.vertices[size_t(a)] - c, pb = cell.vertices[size_t(b)] - c;
-      return std::atan2(pa.dot(w), pa.dot(u)) < std::atan2(pb.dot(w), pb.dot(u));
-    });
+    // Each vertex's angle about the centre, once (not per comparison).
+    std::array<double, 32> angleStore;
+    std::vector<double> angleHeap;
+    double* angle = angleStore.data();
+    if (cell.vertices.size() > angleStore.size()) {
+      angleHeap.resize(cell.vertices.size());
+      angle = angleHeap.data();
+    }
+    for (int v : face) {
+      const Vec3 p = cell.vertices[size_t(v)] - c;
+      angle[v] = std::atan2(p.dot(w), p.dot(u));
+    }
+    std::sort(face.begin(), face.end(), [&](int a, int b) { return angle[a] < angle[b]; });
   }
   return cell;
 }

@@ -1,8 +1,9 @@
 #include "quadtri/surface/robust_implicit_model.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
-#include <map>
+#include <array>
 #include <nlohmann/json.hpp>
 
 #include "quadtri/mesh/topology.h"
@@ -146,8 +147,10 @@ void keepAwayFromFaces(const TriangleMesh& mesh, const Edge& edge, SharedEdge& s
 // (patchOrientation).
 std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo) {
   const size_t n = mesh.triangleCount();
-  // Neighbours across two-sided edges, and whether their windings agree along the edge.
-  std::vector<std::vector<std::pair<uint32_t, bool>>> next(n);
+  // Neighbours across two-sided edges, and whether their windings agree along the edge: at most
+  // one per local edge, in the order of the edges.
+  std::vector<std::array<std::pair<uint32_t, bool>, 3>> next(n);
+  std::vector<uint8_t> nextCount(n, 0);
   std::vector<char> orientable(n, 1);
   for (const Edge& edge : topo.edges) {
     if (edge.sides.size() > 2)
@@ -156,8 +159,8 @@ std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo
     const auto [t0, k0] = edge.sides[0];
     const auto [t1, k1] = edge.sides[1];
     const bool opposite = mesh.triangles[t0][k0] != mesh.triangles[t1][k1];
-    next[t0].emplace_back(t1, opposite);
-    next[t1].emplace_back(t0, opposite);
+    next[t0][nextCount[t0]++] = {t1, opposite};
+    next[t1][nextCount[t1]++] = {t0, opposite};
   }
   std::vector<double> flip(n, 0.0), side(n, 1.0);
   std::vector<uint32_t> part, stack;
@@ -172,7 +175,8 @@ std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo
       stack.pop_back();
       part.push_back(t);
       ok &= orientable[t] != 0;
-      for (auto [u, opposite] : next[t]) {
+      for (uint8_t i = 0; i < nextCount[t]; ++i) {
+        const auto [u, opposite] = next[t][i];
         const double want = opposite ? flip[t] : -flip[t];
         if (flip[u] == 0.0) {
           flip[u] = want;
@@ -239,27 +243,47 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
   }
   if (all.empty()) return out;
   using Key = std::array<int64_t, 3>;
-  std::map<Key, std::vector<uint32_t>> grid;
   const auto cellOf = [&](const Vec3& p) {
     const Vec3 r = (p - all.lo) / spacing;
     return Key{int64_t(std::floor(r.x())), int64_t(std::floor(r.y())), int64_t(std::floor(r.z()))};
   };
-  for (size_t t = 0; t < n; ++t) {
-    if (boxes[t].empty()) continue;
+  // The grid as one sorted array of (grid cell, triangle) entries: each cell's triangles are a
+  // run of it, in increasing order.
+  std::vector<size_t> first(n + 1, 0);
+  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+    if (boxes[t].empty()) return;
     const Key lo = cellOf(boxes[t].lo), hi = cellOf(boxes[t].hi);
-    if ((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1) > 4096) {
+    const int64_t size = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    if (size > 4096) {
       out[t] = 1;  // a cell far larger than the mesh's triangles: shrink it
-      continue;
+      return;
     }
+    first[t + 1] = size_t(size);
+  });
+  for (size_t t = 0; t < n; ++t) first[t + 1] += first[t];
+  struct Entry {
+    Key key;
+    uint32_t t;
+    bool operator<(const Entry& o) const { return key != o.key ? key < o.key : t < o.t; }
+  };
+  std::vector<Entry> grid(first[n]);
+  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+    if (first[t + 1] == first[t]) return;
+    const Key lo = cellOf(boxes[t].lo), hi = cellOf(boxes[t].hi);
+    size_t i = first[t];
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (int64_t z = lo[2]; z <= hi[2]; ++z) grid[{x, y, z}].push_back(uint32_t(t));
-  }
+        for (int64_t z = lo[2]; z <= hi[2]; ++z) grid[i++] = Entry{{x, y, z}, uint32_t(t)};
+  });
+  tbb::parallel_sort(grid.begin(), grid.end());
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (const auto& [key, list] : grid)
-    for (size_t i = 0; i < list.size(); ++i)
-      for (size_t j = i + 1; j < list.size(); ++j) {
-        const uint32_t a = std::min(list[i], list[j]), b = std::max(list[i], list[j]);
+  for (size_t begin = 0; begin < grid.size();) {
+    size_t end = begin + 1;
+    while (end < grid.size() && grid[end].key == grid[begin].key) ++end;
+    const Key& key = grid[begin].key;
+    for (size_t i = begin; i < end; ++i)
+      for (size_t j = i + 1; j < end; ++j) {
+        const uint32_t a = grid[i].t, b = grid[j].t;
         bool shared = false;
         for (uint32_t va : mesh.triangles[a])
           for (uint32_t vb : mesh.triangles[b]) shared |= va == vb;
@@ -272,6 +296,8 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
         if (cellOf(ba.lo.cwiseMax(bb.lo)) != key) continue;
         pairs.emplace_back(a, b);
       }
+    begin = end;
+  }
   std::vector<char> hit(pairs.size(), 0);
   tbb::parallel_for(size_t(0), pairs.size(), [&](size_t i) {
     const auto [a, b] = pairs[i];
@@ -297,7 +323,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   std::vector<SharedEdge> edges(topo.edges.size());
   tbb::parallel_for(size_t(0), edges.size(),
                     [&](size_t i) { edges[i] = sharedEdge(m, topo.edges[i]); });
-  const std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m);
+  const std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m, topo);
 
   patches_.resize(m.triangleCount());
   frames_.resize(m.triangleCount());

@@ -1,6 +1,10 @@
 #include "quadtri/surface/robust_pencil.h"
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
 
 namespace quadtri {
 namespace {
@@ -20,56 +24,71 @@ Mat3 quadraticPart(const QuadricCoeffs& q) {
   return m;
 }
 
-}  // namespace
+// Σ a_i b_i in fixed blocks summed in order: the same bits for any thread count.
+double dot(const std::vector<double>& a, const std::vector<double>& b) {
+  constexpr size_t kBlock = 16384;
+  const size_t blocks = (a.size() + kBlock - 1) / kBlock;
+  std::vector<double> partial(blocks, 0.0);
+  tbb::parallel_for(size_t(0), blocks, [&](size_t i) {
+    double sum = 0.0;
+    for (size_t j = i * kBlock; j < std::min(a.size(), (i + 1) * kBlock); ++j) sum += a[j] * b[j];
+    partial[i] = sum;
+  });
+  double sum = 0.0;
+  for (double p : partial) sum += p;
+  return sum;
+}
 
-// Moves every patch along its pencil, q_t + μ_t p_t (corners and their normals do not change),
-// so that neighbours pass at the same signed distance from each shared edge's arc midpoint:
-// sparse least squares over all patches, rows s_a + c_a μ_a = s_b + c_b μ_b per interior edge
-// (s the oriented distance q/|∇q| of the arc midpoint, c its change per unit μ) plus
-// kArcWeight·|c|·μ_t per patch. Data sampled from a sphere give s = 0 everywhere and μ = 0;
-// for other quadrics it keeps neighbouring multiples of L² alike, so a − κb splits into a
-// real plane pair through each edge (see alignWithCrossing).
-void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
-                      const std::vector<Vec3>& arcMidpoints,
-                      const std::vector<std::array<Vec3, 3>>& controlPoints,
-                      const std::vector<QuadricCoeffs>& pencils,
-                      const std::vector<double>& cornerNormalErrorDeg,
-                      std::vector<QuadricPatch>& patches) {
-  const size_t count = patches.size();
+// Iterations and relative residual of the conjugate-gradient solve (a 1,000,000-triangle torus
+// takes about 300); a system that needs more goes to the direct solver.
+constexpr int kMaxIterations = 2000;
+constexpr double kResidual = 1e-14;
+
+// Jacobi-preconditioned conjugate gradients for the symmetric positive definite N μ = rhs;
+// false when it does not reach kResidual within kMaxIterations.
+template <typename Multiply>
+bool conjugateGradients(const Multiply& multiply, const std::vector<double>& rhs,
+                        const std::vector<double>& diagonal, std::vector<double>& x) {
+  const size_t n = rhs.size();
+  x.assign(n, 0.0);
+  const double bb = dot(rhs, rhs);
+  if (!std::isfinite(bb)) return false;
+  if (bb == 0.0) return true;
+  for (double d : diagonal)
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+  std::vector<double> r = rhs, z(n), p(n), q(n);
+  for (size_t i = 0; i < n; ++i) z[i] = r[i] / diagonal[i];
+  p = z;
+  double rz = dot(r, z);
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    multiply(p, q);
+    const double pq = dot(p, q);
+    if (!(pq > 0.0) || !std::isfinite(pq)) return false;
+    const double alpha = rz / pq;
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+      x[i] += alpha * p[i];
+      r[i] -= alpha * q[i];
+      z[i] = r[i] / diagonal[i];
+    });
+    if (dot(r, r) <= kResidual * kResidual * bb) return true;
+    const double rzNext = dot(r, z);
+    const double beta = rzNext / rz;
+    rz = rzNext;
+    tbb::parallel_for(size_t(0), n, [&](size_t i) { p[i] = z[i] + beta * p[i]; });
+  }
+  return false;
+}
+
+// The same system by sparse LDLᵀ; empty when that fails.
+std::vector<double> directSolve(const MeshTopology& topo,
+                                const std::vector<std::array<double, 3>>& change,
+                                const std::vector<std::array<double, 3>>& distance,
+                                const std::vector<double>& held, size_t count) {
   const Eigen::Index n = Eigen::Index(count);
-  // distance[t][k], change[t][k]: s and c of patch t at its edge k's arc midpoint.
-  std::vector<std::array<double, 3>> distance(count), change(count);
-  for (size_t t = 0; t < count; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& m = arcMidpoints[topo.edgeOf[t][k]];
-      const double g = quadricGradient(patches[t].q, m).norm();
-      const double o = patches[t].orientation / (g > 0.0 ? g : 1.0);
-      distance[t][k] = o * evalQuadric(patches[t].q, m);
-      change[t][k] = o * evalQuadric(pencils[t], m);
-    }
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-  // The regulariser measures μ by how far it moves the patch anywhere (sampled on f_p), not
-  // only at the arc midpoints: where those lie near the triangle's plane (inflections,
-  // saddles) a large μ would leave them in place and bend the rest of the patch.
-  const double samples[7][2] = {{1. / 3, 1. / 3}, {0.5, 0},         {0.5, 0.5},      {0, 0.5},
-                                {1. / 6, 1. / 6}, {2. / 3, 1. / 6}, {1. / 6, 2. / 3}};
-  for (size_t t = 0; t < count; ++t) {
-    const QuadraticPatch fp = quadraticPatch(mesh, controlPoints, t);
-    double effect = 0.0;
-    for (const auto& uv : samples) {
-      const Vec3 x = fp.position(uv[0], uv[1]);
-      const double g = quadricGradient(patches[t].q, x).norm();
-      effect = std::max(effect, std::abs(evalQuadric(pencils[t], x)) / (g > 0.0 ? g : 1.0));
-    }
-    for (int k = 0; k < 3; ++k) effect = std::max(effect, std::abs(change[t][k]));
-    // Flat patches (L² vanishes on them): no row sees μ, so hold it at 0 explicitly.
-    const double size = (mesh.corner(t, 1) - mesh.corner(t, 0)).norm() +
-                        (mesh.corner(t, 2) - mesh.corner(t, 1)).norm();
-    effect = std::max(effect, 1e-6 * size);
-    const double weight = std::max(kArcWeight, cornerNormalErrorDeg[t] / kCompatibleDeg);
-    entries.emplace_back(Eigen::Index(t), Eigen::Index(t), weight * weight * effect * effect);
-  }
+  for (size_t t = 0; t < count; ++t)
+    entries.emplace_back(Eigen::Index(t), Eigen::Index(t), held[t]);
   for (size_t e = 0; e < topo.edges.size(); ++e) {
     const Edge& edge = topo.edges[e];
     if (edge.sides.size() != 2) continue;
@@ -86,18 +105,122 @@ void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
   Eigen::SparseMatrix<double> normal(n, n);
   normal.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
-  if (solver.info() != Eigen::Success) return;
+  if (solver.info() != Eigen::Success) return {};
   const Eigen::VectorXd mu = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !mu.allFinite()) return;
-  for (size_t t = 0; t < count; ++t) {
+  if (solver.info() != Eigen::Success || !mu.allFinite()) return {};
+  return std::vector<double>(mu.data(), mu.data() + n);
+}
+
+}  // namespace
+
+// Moves every patch along its pencil, q_t + μ_t p_t (corners and their normals do not change),
+// so that neighbours pass at the same signed distance from each shared edge's arc midpoint:
+// sparse least squares over all patches, rows s_a + c_a μ_a = s_b + c_b μ_b per interior edge
+// (s the oriented distance q/|∇q| of the arc midpoint, c its change per unit μ) plus
+// kArcWeight·|c|·μ_t per patch. Data sampled from a sphere give s = 0 everywhere and μ = 0;
+// for other quadrics it keeps neighbouring multiples of L² alike, so a − κb splits into a
+// real plane pair through each edge (see alignWithCrossing).
+void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
+                      const std::vector<Vec3>& arcMidpoints,
+                      const std::vector<std::array<Vec3, 3>>& controlPoints,
+                      const std::vector<QuadricCoeffs>& pencils,
+                      const std::vector<double>& cornerNormalErrorDeg,
+                      std::vector<QuadricPatch>& patches) {
+  const size_t count = patches.size();
+  // distance[t][k], change[t][k]: s and c of patch t at its edge k's arc midpoint; held[t]:
+  // the regulariser's diagonal entry. Each triangle writes its own slots only.
+  std::vector<std::array<double, 3>> distance(count), change(count);
+  std::vector<double> held(count);
+  // The regulariser measures μ by how far it moves the patch anywhere (sampled on f_p), not
+  // only at the arc midpoints: where those lie near the triangle's plane (inflections,
+  // saddles) a large μ would leave them in place and bend the rest of the patch.
+  static constexpr double kSamples[7][2] = {{1. / 3, 1. / 3}, {0.5, 0},         {0.5, 0.5},
+                                            {0, 0.5},         {1. / 6, 1. / 6}, {2. / 3, 1. / 6},
+                                            {1. / 6, 2. / 3}};
+  tbb::parallel_for(size_t(0), count, [&](size_t t) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& m = arcMidpoints[topo.edgeOf[t][k]];
+      const double g = quadricGradient(patches[t].q, m).norm();
+      const double o = patches[t].orientation / (g > 0.0 ? g : 1.0);
+      distance[t][k] = o * evalQuadric(patches[t].q, m);
+      change[t][k] = o * evalQuadric(pencils[t], m);
+    }
+    const QuadraticPatch fp = quadraticPatch(mesh, controlPoints, t);
+    double effect = 0.0;
+    for (const auto& uv : kSamples) {
+      const Vec3 x = fp.position(uv[0], uv[1]);
+      const double g = quadricGradient(patches[t].q, x).norm();
+      effect = std::max(effect, std::abs(evalQuadric(pencils[t], x)) / (g > 0.0 ? g : 1.0));
+    }
+    for (int k = 0; k < 3; ++k) effect = std::max(effect, std::abs(change[t][k]));
+    // Flat patches (L² vanishes on them): no row sees μ, so hold it at 0 explicitly.
+    const double size = (mesh.corner(t, 1) - mesh.corner(t, 0)).norm() +
+                        (mesh.corner(t, 2) - mesh.corner(t, 1)).norm();
+    effect = std::max(effect, 1e-6 * size);
+    const double weight = std::max(kArcWeight, cornerNormalErrorDeg[t] / kCompatibleDeg);
+    held[t] = weight * weight * effect * effect;
+  });
+  // The normal equations N μ = rhs: N = diag(held) + Σ over interior edges of c cᵀ with c the
+  // edge's row (c_a at a, −c_b at b), rhs = Σ c r. Products with N and rhs are formed per
+  // triangle from its own edges (no matrix), so they do not depend on the thread count.
+  const auto rowOf = [&](size_t e, double& ca, double& cb, double& r) {
+    const Edge& edge = topo.edges[e];
+    const auto [a, ka] = edge.sides[0];
+    const auto [b, kb] = edge.sides[1];
+    ca = change[a][ka];
+    cb = -change[b][kb];
+    r = distance[b][kb] - distance[a][ka];
+  };
+  // Per triangle: N's diagonal, rhs, and its off-diagonal entries (one per interior edge: the
+  // neighbour across it and c_a c_b; zero for an edge whose two sides are both this triangle's,
+  // whose cross terms go to the diagonal).
+  std::vector<double> rhs(count, 0.0), diagonal(count, 0.0);
+  std::vector<std::array<double, 3>> offDiagonal(count);
+  std::vector<std::array<uint32_t, 3>> neighbour(count);
+  tbb::parallel_for(size_t(0), count, [&](size_t t) {
+    double b = 0.0, d = held[t];
+    for (int k = 0; k < 3; ++k) {
+      offDiagonal[t][k] = 0.0;
+      neighbour[t][k] = uint32_t(t);
+      const Edge& edge = topo.edges[topo.edgeOf[t][k]];
+      if (edge.sides.size() != 2) continue;
+      double ca, cb, r;
+      rowOf(topo.edgeOf[t][k], ca, cb, r);
+      const bool first = edge.sides[0] == EdgeSide(uint32_t(t), uint8_t(k));
+      const double c = first ? ca : cb;
+      b += c * r;
+      d += c * c;
+      if (edge.sides[0].first == edge.sides[1].first) {
+        d += ca * cb;
+      } else {
+        offDiagonal[t][k] = ca * cb;
+        neighbour[t][k] = first ? edge.sides[1].first : edge.sides[0].first;
+      }
+    }
+    rhs[t] = b;
+    diagonal[t] = d;
+  });
+  // y = N x, row by row.
+  const auto multiply = [&](const std::vector<double>& x, std::vector<double>& y) {
+    tbb::parallel_for(size_t(0), count, [&](size_t t) {
+      double sum = diagonal[t] * x[t];
+      for (int k = 0; k < 3; ++k) sum += offDiagonal[t][k] * x[neighbour[t][k]];
+      y[t] = sum;
+    });
+  };
+  std::vector<double> mu;
+  if (!conjugateGradients(multiply, rhs, diagonal, mu))
+    mu = directSolve(topo, change, distance, held, count);
+  if (mu.empty()) return;
+  tbb::parallel_for(size_t(0), count, [&](size_t t) {
     QuadricCoeffs& q = patches[t].q;
     double norm2 = 0.0;
     for (int i = 0; i < 10; ++i) {
-      q[i] += mu[Eigen::Index(t)] * pencils[t][i];
+      q[i] += mu[t] * pencils[t][i];
       norm2 += q[i] * q[i];
     }
     for (double& c : q) c /= std::sqrt(norm2);
-  }
+  });
 }
 
 // Where the fitted member leaves part of the triangle uncovered (some line along the face

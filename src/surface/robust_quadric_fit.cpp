@@ -6,6 +6,8 @@ namespace quadtri {
 namespace {
 
 using Coeffs = Eigen::Matrix<double, 10, 1>;
+// A null space of the hard rows: 10 coefficients by at most 10 directions.
+using NullBasis = Eigen::Matrix<double, 10, Eigen::Dynamic, 0, 10, 10>;
 using Row = Eigen::Matrix<double, 1, 10>;
 
 // The fit works on w = (A, B, C, D/√2, E/√2, F/√2, G, H, I, J): the Euclidean norm of w is the
@@ -86,9 +88,10 @@ QuadricFit pointFit(const CornerData& data) {
 
 // Steps (1) and (2) of fitQuadric in the local frame: w, and the null space of the hard rows
 // (the directions (3) may still move in). perCorner replaces the normalisation's sum by one
-// row per corner. False when the hard rows vanish or contradict each other.
+// row per corner. False when the hard rows vanish or contradict each other. The matrices of
+// varying size have fixed capacities: no allocation per fit.
 bool solveTangency(const std::array<Vec3, 3>& y, const std::array<Vec3, 3>& normal, bool perCorner,
-                   Coeffs& w, Eigen::MatrixXd& nullBasis) {
+                   Coeffs& w, NullBasis& nullBasis) {
   Eigen::Matrix<double, 6, 10> H = Eigen::Matrix<double, 6, 10>::Zero();
   Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
   for (int k = 0; k < 3; ++k) {
@@ -123,10 +126,12 @@ bool solveTangency(const std::array<Vec3, 3>& y, const std::array<Vec3, 3>& norm
     T.row(2 * k) = gradientRow(y[k], t1);
     T.row(2 * k + 1) = gradientRow(y[k], t2);
   }
-  const Eigen::MatrixXd TN = T * nullBasis;
+  const Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 10> TN = T * nullBasis;
   const Eigen::Matrix<double, 6, 1> residual = T * particular;
-  Eigen::JacobiSVD<Eigen::MatrixXd> tanSvd(TN, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  Eigen::VectorXd a = Eigen::VectorXd::Zero(nullBasis.cols());
+  Eigen::JacobiSVD<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 10>> tanSvd(
+      TN, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1> a =
+      Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1>::Zero(nullBasis.cols());
   for (int i = 0; i < tanSvd.singularValues().size(); ++i) {
     const double s = tanSvd.singularValues()[i];
     a -= (s / (s * s + kTangencyDamping * kTangencyDamping)) *
@@ -172,7 +177,7 @@ QuadricFit fitQuadric(const CornerData& data) {
   // (normals no quadric comes near, e.g. averaged across parts that pass through each other),
   // (1) fixes every corner's normal component instead: n_k·∇q(v_k) = 1/3.
   Coeffs w;
-  Eigen::MatrixXd nullBasis;
+  NullBasis nullBasis;
   if (!solveTangency(y, data.normal, false, w, nullBasis)) return pointFit(data);
   double least = kInfinity, sum = 0.0;
   for (int k = 0; k < 3; ++k) {
@@ -181,7 +186,7 @@ QuadricFit fitQuadric(const CornerData& data) {
     sum += along;
   }
   Coeffs corner;
-  Eigen::MatrixXd cornerNull;
+  NullBasis cornerNull;
   if (least < kLeastCornerShare * sum && solveTangency(y, data.normal, true, corner, cornerNull)) {
     w = corner;
     nullBasis = cornerNull;

@@ -4,6 +4,7 @@
 #include <array>
 #include <vector>
 
+#include "quadtri/mesh/topology.h"
 #include "quadtri/mesh/triangle_mesh.h"
 
 namespace quadtri {
@@ -38,6 +39,10 @@ Vec3 edgeControlPoint(const Vec3& vi, const Vec3& ni, const Vec3& vj, const Vec3
 /// `gaveUpPatches`, when given, gets one flag per triangle: 1 where one of its edges' control
 /// points gave up its tangent planes (see edgeControlPoint; the crease rule reports none).
 std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
+                                                   std::vector<uint8_t>* gaveUpPatches = nullptr);
+/// The same on the mesh's adjacency built once by the caller.
+std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
+                                                   const MeshTopology& topo,
                                                    std::vector<uint8_t>* gaveUpPatches = nullptr);
 
 /// The quadratic Bézier triangle with corners v[k] and edge control points b[k] (edge k joins
