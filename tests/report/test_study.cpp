@@ -217,6 +217,45 @@ TEST(Study, ShardsPartitionTheRows) {
   EXPECT_EQ(shardMeshes[1], (std::set<std::string>{"ico.obj"}));
 }
 
+// `quadtri merge s1/study.csv s2/study.csv -o study.csv`: the shards' rows in one file, each
+// mesh once; shards that overlap or are of another table are refused, writing nothing.
+TEST(Study, ShardCsvsMergeIntoTheWholeStudysRows) {
+  const StudyFolder folder;
+  const std::vector<StudyMesh> meshes = meshesInFolder(folder.dir);
+  StudyOptions options = quickOptions();
+  options.models = {"flat", "nagata"};
+  std::multiset<std::pair<std::string, std::string>> expected, got;
+  for (const StudyRow& row : runStudy(meshes, options)) expected.insert({row.mesh, row.model});
+  std::vector<fs::path> shards;
+  for (size_t shard = 1; shard <= 2; ++shard) {
+    options.shard = StudyShard::parse(fmt::format("{}/2", shard));
+    const fs::path dir = folder.dir / fmt::format("out{}", shard);
+    writeStudy(dir, runStudy(meshes, options), "shard");
+    shards.push_back(dir / "study.csv");
+  }
+  const fs::path merged = folder.dir / "merged.csv";
+  EXPECT_EQ(mergeStudyShards(shards, merged), expected.size());
+  const CsvTable table = readCsvFile(merged);
+  ASSERT_EQ(table.rows.size(), expected.size() + 1);
+  EXPECT_EQ(table.rows[0], readCsvFile(shards[0]).rows[0]);
+  for (size_t r = 1; r < table.rows.size(); ++r) got.insert({table.rows[r][0], table.rows[r][1]});
+  EXPECT_EQ(got, expected);
+
+  const fs::path refused = folder.dir / "refused.csv";
+  try {
+    mergeStudyShards({shards[0], shards[1], shards[0]}, refused);
+    ADD_FAILURE() << "overlapping shards merged";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("has rows in " + shards[0].string() + " and " +
+                                         shards[0].string()),
+              std::string::npos)
+        << e.what();
+  }
+  std::ofstream(folder.dir / "other.csv") << "mesh,something\nico.obj,1\n";
+  EXPECT_THROW(mergeStudyShards({shards[0], folder.dir / "other.csv"}, refused), Error);
+  EXPECT_FALSE(fs::exists(refused));
+}
+
 TEST(Study, ShardAndModelErrors) {
   EXPECT_EQ(StudyShard::parse("3/4").index, 3u);
   for (const char* bad : {"0/2", "3/2", "1", "a/b", "1/0", "/2", "1/"}) {
