@@ -266,6 +266,9 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
     fail("{}:1: expected 'ply', the first line of a PLY file", name);
   bool ended = false;
   while (!ended && readHeaderLine(in, line, name, ++lineNo)) {
+    // The header is text; a NUL byte in it is no PLY header.
+    if (line.find('\0') != std::string::npos)
+      fail("{}:{}: a NUL byte in the PLY header", name, lineNo);
     const std::vector<std::string_view> w = words(line);
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "format") {
@@ -279,6 +282,12 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
       const std::optional<uint64_t> count = parseCount(w[2]);
       if (!count)
         fail("{}:{}: element {}'s count '{}' is not an unsigned integer", name, lineNo, w[1], w[2]);
+      // Assimp's PLY importer frees what it did not allocate when an element repeats
+      // (found by fuzz_ply).
+      for (const Element& e : elements)
+        if (e.name == w[1])
+          fail("{}:{}: element '{}' is declared again (first on line {})", name, lineNo, w[1],
+               e.line);
       elements.push_back({std::string(w[1]), *count, 0, 0, lineNo});
     } else if (w[0] == "property") {
       if (elements.empty())
