@@ -3,6 +3,7 @@
 #include <fmt/ranges.h>
 
 #include "quadtri/math/error.h"
+#include "quadtri/surface/bezier_triangle.h"
 #include "quadtri/surface/edges_model.h"
 #include "quadtri/surface/flat_model.h"
 #include "quadtri/surface/implicit_model.h"
@@ -17,6 +18,11 @@ namespace quadtri {
 
 const std::vector<QuadricPatch>& SurfaceModel::quadricPatches() const {
   static const std::vector<QuadricPatch> none;
+  return none;
+}
+
+const std::vector<BezierTriangle>& SurfaceModel::bezierPieces() const {
+  static const std::vector<BezierTriangle> none;
   return none;
 }
 

@@ -14,6 +14,7 @@
 namespace quadtri {
 
 struct QuadricPatch;
+struct BezierTriangle;
 
 /// A point on a model's surface with its unit geometric normal, oriented to the side of the
 /// mesh's shading normals.
@@ -27,6 +28,7 @@ enum class Representation {
   InputTriangles,  ///< the mesh's own triangles (flat, shading, shading-offset)
   Tessellated,     ///< a triangle lattice evaluated on each patch (tessellate.h)
   Implicit,        ///< quadric patches intersected directly (quadric_patch.h)
+  Bezier,          ///< quartic Bézier pieces intersected directly (bezier_triangle.h)
 };
 
 /// A mesh converted by one model. Patch t corresponds to triangle t of the mesh and is
@@ -61,6 +63,9 @@ class SurfaceModel {
   /// (index t is patch t) and then any extra primitives that join them (edge bridges, see
   /// QuadricPatch::joins). The patches alone by default.
   virtual const std::vector<QuadricPatch>& renderPatches() const { return quadricPatches(); }
+  /// Bezier models: their pieces, each naming its triangle (BezierTriangle::triangle); empty
+  /// otherwise.
+  virtual const std::vector<BezierTriangle>& bezierPieces() const;
   /// Bytes of the model's own patch records (0 when it renders tessellated triangles).
   virtual size_t patchMemoryBytes() const { return 0; }
   /// The data of patch t for `quadtri convert --json` (see README, "Patch JSON").
