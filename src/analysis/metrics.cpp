@@ -92,18 +92,36 @@ std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
     const Vec2 uv = (1.0 - local) * kCornerUv[k] + local * kCornerUv[(k + 1) % 3];
     return evaluateChecked(model, t, uv);
   };
-  using Result = std::optional<EdgeContinuity>;
-  auto join = [](Result a, const Result& b) {
-    if (!a) return b;
-    if (b) {
-      a->c0Gap = std::max(a->c0Gap, b->c0Gap);
-      a->c1AngleDeg = std::max(a->c1AngleDeg, b->c1AngleDeg);
+  // Per block: the continuity so far, plus the smooth edges seen and how many were G1.
+  struct Partial {
+    std::optional<EdgeContinuity> c;
+    size_t smooth = 0, g1 = 0;
+  };
+  auto join = [](Partial a, const Partial& b) {
+    a.smooth += b.smooth;
+    a.g1 += b.g1;
+    if (!a.c) {
+      a.c = b.c;
+      return a;
+    }
+    if (b.c) {
+      a.c->c0Gap = std::max(a.c->c0Gap, b.c->c0Gap);
+      a.c->c1AngleDeg = std::max(a.c->c1AngleDeg, b.c->c1AngleDeg);
+      if (b.c->c1AngleSmoothDeg)
+        a.c->c1AngleSmoothDeg =
+            std::max(a.c->c1AngleSmoothDeg.value_or(0.0), *b.c->c1AngleSmoothDeg);
     }
     return a;
   };
-  return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, topology.edges.size()), Result(),
-      [&](const tbb::blocked_range<size_t>& range, Result best) {
+  const EdgeEnds ends = edgeEnds(mesh, topology);
+  // The corner normal of side (t, k) at mesh vertex v of the edge.
+  auto sideNormal = [&](std::pair<uint32_t, uint8_t> side, uint32_t v) {
+    const auto [t, k] = side;
+    return mesh.cornerNormal(t, mesh.triangles[t][k] == v ? k : (k + 1) % 3);
+  };
+  Partial total = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, topology.edges.size()), Partial(),
+      [&](const tbb::blocked_range<size_t>& range, Partial best) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
           const Edge& e = topology.edges[i];
           if (e.sides.size() != 2) continue;
@@ -114,11 +132,26 @@ std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
             c.c0Gap = std::max(c.c0Gap, (pa.position - pb.position).norm() / scale);
             c.c1AngleDeg = std::max(c.c1AngleDeg, angleDegrees(pa.normal, pb.normal));
           }
-          best = join(best, c);
+          Partial one;
+          bool smooth =
+              !mesh.hasNormals() || (sideNormal(e.sides[0], e.a) == sideNormal(e.sides[1], e.a) &&
+                                     sideNormal(e.sides[0], e.b) == sideNormal(e.sides[1], e.b));
+          for (auto [t, k] : e.sides)
+            smooth = smooth && consistentCorner(mesh, ends, t, k) &&
+                     consistentCorner(mesh, ends, t, (k + 1) % 3);
+          if (smooth) {
+            c.c1AngleSmoothDeg = c.c1AngleDeg;
+            one.smooth = 1;
+            one.g1 = c.c1AngleDeg < kG1ToleranceDeg;
+          }
+          one.c = c;
+          best = join(best, one);
         }
         return best;
       },
       join);
+  if (total.c && total.smooth > 0) total.c->g1EdgeShare = double(total.g1) / double(total.smooth);
+  return total.c;
 }
 
 double truthDistance(const SurfaceModel& model, const AnalyticSurface& truth, int level) {
@@ -159,6 +192,8 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
           edgeContinuity(model, topology, options.edgeSamples)) {
     m.c0Gap = c->c0Gap;
     m.c1AngleDeg = c->c1AngleDeg;
+    m.c1AngleSmoothDeg = c->c1AngleSmoothDeg;
+    m.g1EdgeShare = c->g1EdgeShare;
   }
   if (topology.isClosed()) m.crackRate = crackRate(geometry, options.crack);
   if (truth) m.truthDistance = truthDistance(model, *truth, options.truthLevel);
@@ -203,6 +238,9 @@ const std::vector<MetricKey>& keyTable() {
       {"fallback_rate", true, [](const ModelMetrics& m) { return Json(m.fallbackRate); }},
       {"c0_gap", true, [](const ModelMetrics& m) { return nullable(m.c0Gap); }},
       {"c1_angle_deg", true, [](const ModelMetrics& m) { return nullable(m.c1AngleDeg); }},
+      {"c1_angle_smooth_deg", true,
+       [](const ModelMetrics& m) { return nullable(m.c1AngleSmoothDeg); }},
+      {"g1_edge_share", true, [](const ModelMetrics& m) { return nullable(m.g1EdgeShare); }},
       {"crack_rate", true, [](const ModelMetrics& m) { return nullable(m.crackRate); }},
       {"truth_distance", true, [](const ModelMetrics& m) { return nullable(m.truthDistance); }},
   };

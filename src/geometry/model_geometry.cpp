@@ -32,6 +32,8 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
       g.triangles = tessellate(model, tessellation);
       g.shadingNormals = true;
       break;
+    case Representation::Bezier:
+      fail("model '{}': Bézier pieces cannot be traced yet", model.name());
     case Representation::Implicit:
       g.patches = &model.renderPatches();
       g.patchBytes = model.patchMemoryBytes();

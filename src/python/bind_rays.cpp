@@ -33,6 +33,8 @@ struct PyRayScene {
         return int64_t(primitive / e.trianglesPerPatch);
       case Representation::Implicit:
         return primitive < e.model->patchCount() ? int64_t(primitive) : -1;
+      case Representation::Bezier:
+        return int64_t(primitive / 3);
     }
     return -1;
   }

@@ -105,6 +105,18 @@ void raise(std::optional<StudyWorst>& worst, double value, const std::string& me
   if (std::isfinite(value) && (!worst || value > worst->value)) worst = StudyWorst{value, mesh};
 }
 
+// Keeps the smallest finite value and the first mesh that has it.
+void lower(std::optional<StudyWorst>& lowest, double value, const std::string& mesh) {
+  if (std::isfinite(value) && (!lowest || value < lowest->value)) lowest = StudyWorst{value, mesh};
+}
+
+// A lowest share: "1" where every mesh has all of it, else the share and its mesh.
+std::string lowestCell(const std::optional<StudyWorst>& lowest) {
+  if (!lowest) return "-";
+  if (lowest->value == 1.0) return "1";
+  return fmt::format("{} ({})", number(lowest->value), cell(lowest->mesh));
+}
+
 }  // namespace
 
 std::vector<StudyMesh> readCorpusManifest(const fs::path& manifest, const fs::path& corpus) {
@@ -282,6 +294,11 @@ std::vector<ModelSummary> summarizeStudy(const std::vector<StudyRow>& rows) {
     if (m.vertexNormalErrorConsistentDeg)
       raise(s.worstNormalErrorConsistentDeg, *m.vertexNormalErrorConsistentDeg, row.mesh);
     raise(s.worstFallbackRate, m.fallbackRate, row.mesh);
+    if (m.c1AngleSmoothDeg) raise(s.worstC1SmoothDeg, *m.c1AngleSmoothDeg, row.mesh);
+    if (m.g1EdgeShare) {
+      lower(s.lowestG1EdgeShare, *m.g1EdgeShare, row.mesh);
+      s.notG1 += *m.g1EdgeShare < 1.0;
+    }
     fallbackSums[it->second] += m.fallbackRate;
     seconds[it->second].push_back(m.convertSeconds);
   }
@@ -307,20 +324,23 @@ std::string studySummaryMarkdown(const std::vector<ModelSummary>& summaries,
       "Rates are fractions. *cracking*: closed meshes with `crack_rate` > 0; *folding*: meshes "
       "with `vertex_normal_flip_rate_consistent` > 0 (patches folding over consistent corners); "
       "a worst value names its mesh. Fallback: `fallback_rate`, the share of patches that gave "
-      "up a constraint.\n\n";
+      "up a constraint. G1: `c1_angle_smooth_deg`, the largest normal jump across edges whose "
+      "two triangles share both end normals, and `g1_edge_share`, the share of those edges where "
+      "it stays below 0.01 degrees.\n\n";
   out +=
       "| model | measured | cracking | worst crack_rate | folding | worst fold rate | worst "
-      "fallback_rate | mean fallback_rate | worst vertex_normal_error_consistent_deg | median "
-      "convert_seconds |\n";
-  out += "|---|---|---|---|---|---|---|---|---|---|\n";
+      "fallback_rate | mean fallback_rate | worst vertex_normal_error_consistent_deg | worst "
+      "c1_angle_smooth_deg | lowest g1_edge_share | median convert_seconds |\n";
+  out += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ModelSummary& s : summaries) {
-    out += fmt::format("| {} | {} of {} | {} of {} | {} | {} of {} | {} | {} | {} | {} | {} |\n",
-                       cell(s.model), s.measured, s.rows, s.cracking, s.closed,
-                       worstCell(s.worstCrackRate), s.folding, s.withConsistentCorners,
-                       worstCell(s.worstFoldRate), worstCell(s.worstFallbackRate),
-                       s.meanFallbackRate ? number(*s.meanFallbackRate) : "-",
-                       worstCell(s.worstNormalErrorConsistentDeg),
-                       s.medianConvertSeconds ? number(*s.medianConvertSeconds) : "-");
+    out += fmt::format(
+        "| {} | {} of {} | {} of {} | {} | {} of {} | {} | {} | {} | {} | {} | {} | {} |\n",
+        cell(s.model), s.measured, s.rows, s.cracking, s.closed, worstCell(s.worstCrackRate),
+        s.folding, s.withConsistentCorners, worstCell(s.worstFoldRate),
+        worstCell(s.worstFallbackRate), s.meanFallbackRate ? number(*s.meanFallbackRate) : "-",
+        worstCell(s.worstNormalErrorConsistentDeg), worstCell(s.worstC1SmoothDeg),
+        lowestCell(s.lowestG1EdgeShare),
+        s.medianConvertSeconds ? number(*s.medianConvertSeconds) : "-");
   }
   // Failures, one line per mesh and error with the models it stopped.
   std::vector<std::pair<std::pair<std::string, std::string>, std::vector<std::string>>> failures;

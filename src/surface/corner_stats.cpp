@@ -40,8 +40,8 @@ std::string share(size_t part, size_t whole, std::string_view what) {
                      whole);
 }
 
-// Whether corner k of triangle t is consistent (CornerStats): its shared tangents turn the way
-// the patch's side does.
+}  // namespace
+
 bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, int k) {
   const int next = (k + 1) % 3, prev = (k + 2) % 3;
   const Vec3 p = mesh.corner(t, k);
@@ -57,8 +57,6 @@ bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, 
   // the sine of their angle must clear round-off.
   return patchOrientation(mesh, t) * t1.cross(t2).dot(n) > 1e-9 * t1.norm() * t2.norm();
 }
-
-}  // namespace
 
 std::optional<double> CornerStats::consistentFlipRate() const {
   if (consistent() == 0) return std::nullopt;

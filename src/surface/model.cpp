@@ -6,6 +6,7 @@
 #include "quadtri/surface/bezier_triangle.h"
 #include "quadtri/surface/edges_model.h"
 #include "quadtri/surface/flat_model.h"
+#include "quadtri/surface/g1_model.h"
 #include "quadtri/surface/implicit_model.h"
 #include "quadtri/surface/nagata_model.h"
 #include "quadtri/surface/param_model.h"
@@ -47,6 +48,7 @@ const std::vector<std::string>& modelNames() {
       "phong",
       "pn",
       "nagata",
+      "quadric-g1",
   };
   return names;
 }
@@ -70,6 +72,7 @@ std::unique_ptr<SurfaceModel> makeModel(std::string_view name,
   if (name == "phong") return std::make_unique<PhongModel>(std::move(mesh));
   if (name == "pn") return std::make_unique<PnModel>(std::move(mesh));
   if (name == "nagata") return std::make_unique<NagataModel>(std::move(mesh));
+  if (name == "quadric-g1") return std::make_unique<G1Model>(std::move(mesh));
   fail("unknown model '{}': expected one of {}", name, fmt::join(modelNames(), ", "));
 }
 

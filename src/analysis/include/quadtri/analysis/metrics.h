@@ -40,7 +40,16 @@ CornerStats checkedCornerStats(const SurfaceModel& model);
 struct EdgeContinuity {
   double c0Gap = 0;       ///< max |P_a(s) − P_b(s)| / mean edge length
   double c1AngleDeg = 0;  ///< max angle between n_a(s) and n_b(s)
+  /// c1AngleDeg over smooth edges only: those whose two sides carry the same corner normals
+  /// at both ends and whose four corners are consistent (CornerStats), where a G1 surface must
+  /// be tangent-continuous; nullopt when there is none.
+  std::optional<double> c1AngleSmoothDeg;
+  /// Share of smooth edges whose normal jump stays below kG1ToleranceDeg (G1 edges).
+  std::optional<double> g1EdgeShare;
 };
+
+/// The largest normal jump (degrees) across an edge that still counts as tangent-continuous.
+inline constexpr double kG1ToleranceDeg = 0.01;
 
 /// Samples `samples` points s = i/(samples−1) along every edge with exactly two sides, each
 /// side evaluating its own patch at the same point of the edge (the sides traverse the edge in
@@ -70,7 +79,7 @@ struct ModelMetrics {
   std::optional<double> vertexNormalErrorConsistentDeg, vertexNormalFlipRateConsistent;
   /// Share of patches that fell back (SurfaceModel::fellBack).
   double fallbackRate = 0;
-  std::optional<double> c0Gap, c1AngleDeg, crackRate, truthDistance;
+  std::optional<double> c0Gap, c1AngleDeg, c1AngleSmoothDeg, g1EdgeShare, crackRate, truthDistance;
 };
 
 struct AnalysisOptions {

@@ -108,6 +108,11 @@ struct ModelSummary {
   std::optional<StudyWorst> worstFallbackRate;
   std::optional<double> meanFallbackRate;
   std::optional<StudyWorst> worstNormalErrorConsistentDeg;
+  /// Of c1_angle_smooth_deg (the normal jump across edges whose sides share both normals).
+  std::optional<StudyWorst> worstC1SmoothDeg;
+  /// The lowest g1_edge_share (share of those edges that are G1), and the meshes below 1.
+  std::optional<StudyWorst> lowestG1EdgeShare;
+  size_t notG1 = 0;
   std::optional<double> medianConvertSeconds;
 };
 

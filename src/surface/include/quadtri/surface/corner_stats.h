@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "quadtri/surface/creases.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri {
@@ -42,6 +43,9 @@ struct CornerStats {
   /// consistentFlips / consistent(); nullopt when no corner is consistent.
   std::optional<double> consistentFlipRate() const;
 };
+
+/// Whether corner k of triangle t is consistent (CornerStats); `ends` = edgeEnds(mesh).
+bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, int k);
 
 /// Evaluates every patch at its three corners (in parallel; the result does not depend on the
 /// thread count).
