@@ -177,10 +177,11 @@ SurfacePoint G1Model::evaluate(size_t t, double u, double v) const {
 nlohmann::json G1Model::patchJson(size_t t) const {
   nlohmann::json out;
   for (int k = 0; k < 3; ++k) out["vertices"].push_back(vecJson(mesh().corner(t, k)));
+  // pieces[k][i]: control point i of piece k (BezierTriangle::index order).
   for (int k = 0; k < 3; ++k) {
     nlohmann::json points = nlohmann::json::array();
     for (const Vec3& b : piece(t, k).b) points.push_back(vecJson(b));
-    out["pieces"].push_back({{"control_points", points}});
+    out["pieces"].push_back(points);
   }
   return out;
 }

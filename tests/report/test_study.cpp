@@ -180,7 +180,7 @@ TEST(Study, FolderRowsCsvAndSummaryAgreeWithAnalyze) {
   std::ifstream summaryFile(out / "summary.md");
   const std::string summary((std::istreambuf_iterator<char>(summaryFile)),
                             std::istreambuf_iterator<char>());
-  EXPECT_NE(summary.find("3 meshes, 11 models. Test run."), std::string::npos);
+  EXPECT_NE(summary.find("3 meshes, 12 models. Test run."), std::string::npos);
   const std::string implicitLine =
       fmt::format("| quadric-implicit | 2 of 3 | {} of 2 | {:.4g} ({}) |", implicit->cracking,
                   implicit->worstCrackRate->value, implicit->worstCrackRate->mesh);
