@@ -274,7 +274,7 @@ class Tracer {
       if (node.zmin > limit(found) + marginZ_) continue;
       const bool last = node.depth >= kMaxDepth || top + 4 > kStackSize;
       const Slopes sl = slopes(node.net);
-      // F at the centroid, then the mean value form: F over the node lies in
+      // F at the centre, then the mean value form: F over the node lies in
       // F(c) + [∂F/∂u]·[−1/3, 2/3] + [∂F/∂v]·[−1/3, 2/3]; no root where that excludes 0.
       double u = (node.cu[0] + node.cu[1] + node.cu[2]) / 3.0;
       double v = (node.cv[0] + node.cv[1] + node.cv[2]) / 3.0;
@@ -282,6 +282,7 @@ class Tracer {
       evaluate(root_, u, v, f, fu, fv);
       if (excluded(sl, f)) continue;
       if (last || sl.injective) {
+        planarStart(node, u, v);
         if (solve(node, sl.injective, last, u, v, found)) {
           if (mode_ == Mode::Any && found.any) return;
           continue;
@@ -331,6 +332,32 @@ class Tracer {
     return f.y + ulo + vlo > marginXY_ || f.y + uhi + vhi < -marginXY_;
   }
 
+  // Barycentric coordinates of the ray (the 2D origin) in the node's corner triangle, whose
+  // corners lie on the surface; false when the triangle is degenerate.
+  static bool planarCoordinates(const Node& node, double& l0, double& l1, double& l2) {
+    const P3& A = node.net[size_t(BezierTriangle::index(0, 0))];
+    const P3& B = node.net[size_t(BezierTriangle::index(4, 0))];
+    const P3& C = node.net[size_t(BezierTriangle::index(0, 4))];
+    const double area = (B.x - A.x) * (C.y - A.y) - (B.y - A.y) * (C.x - A.x);
+    if (!(std::abs(area) > 0.0)) return false;
+    l1 = ((-A.x) * (C.y - A.y) - (-A.y) * (C.x - A.x)) / area;
+    l2 = ((B.x - A.x) * (-A.y) - (B.y - A.y) * (-A.x)) / area;
+    l0 = 1.0 - l1 - l2;
+    return std::isfinite(l1) && std::isfinite(l2);
+  }
+
+  // Newton's start in the node: where the ray crosses its corner triangle, clamped into it
+  // (the centre (u, v) stays when the triangle is degenerate).
+  static void planarStart(const Node& node, double& u, double& v) {
+    double l0, l1, l2;
+    if (!planarCoordinates(node, l0, l1, l2)) return;
+    l0 = std::max(l0, 0.0), l1 = std::max(l1, 0.0), l2 = std::max(l2, 0.0);
+    const double sum = l0 + l1 + l2;
+    l0 /= sum, l1 /= sum, l2 /= sum;
+    u = l0 * node.cu[0] + l1 * node.cu[1] + l2 * node.cu[2];
+    v = l0 * node.cv[0] + l1 * node.cv[1] + l2 * node.cv[2];
+  }
+
   // The node's barycentric coordinates of the piece's (u, v).
   static void nodeCoordinates(const Node& node, double u, double v, double& a, double& b) {
     const double e1u = node.cu[1] - node.cu[0], e1v = node.cv[1] - node.cv[0];
@@ -366,7 +393,7 @@ class Tracer {
     found.any = true;
   }
 
-  // Newton from the node's centre (u, v). True when the node is done: its root recorded (or
+  // Newton from (u, v) in the node. True when the node is done: its root recorded (or
   // out of range), or, at the last level, whatever could be found. At the last level a node
   // that may fold also tries its corners, and the planar corner triangle stands in when Newton
   // finds nothing in the node.
@@ -392,17 +419,13 @@ class Tracer {
     }
     if (converged) return true;
     // Planar stand-in: the corners of the net lie on the surface.
+    double l0, l1, l2;
+    if (!planarCoordinates(node, l0, l1, l2) || l0 < 0.0 || l1 < 0.0 || l2 < 0.0) return true;
+    u = l0 * node.cu[0] + l1 * node.cu[1] + l2 * node.cu[2];
+    v = l0 * node.cv[0] + l1 * node.cv[1] + l2 * node.cv[2];
     const P3& A = node.net[size_t(BezierTriangle::index(0, 0))];
     const P3& B = node.net[size_t(BezierTriangle::index(4, 0))];
     const P3& C = node.net[size_t(BezierTriangle::index(0, 4))];
-    const double area = (B.x - A.x) * (C.y - A.y) - (B.y - A.y) * (C.x - A.x);
-    if (!(std::abs(area) > 0.0)) return true;
-    const double l1 = ((-A.x) * (C.y - A.y) - (-A.y) * (C.x - A.x)) / area;
-    const double l2 = ((B.x - A.x) * (-A.y) - (B.y - A.y) * (-A.x)) / area;
-    const double l0 = 1.0 - l1 - l2;
-    if (l0 < 0.0 || l1 < 0.0 || l2 < 0.0) return true;
-    u = l0 * node.cu[0] + l1 * node.cu[1] + l2 * node.cu[2];
-    v = l0 * node.cv[0] + l1 * node.cv[1] + l2 * node.cv[2];
     record(u, v, l0 * A.z + l1 * B.z + l2 * C.z, found);
     return true;
   }
