@@ -39,6 +39,8 @@ const char* representationName(Representation r) {
       return "tessellated";
     case Representation::Implicit:
       return "implicit";
+    case Representation::Bezier:
+      return "bezier";
   }
   return "?";
 }

@@ -33,6 +33,10 @@ struct PyRayScene {
         return int64_t(primitive / e.trianglesPerPatch);
       case Representation::Implicit:
         return primitive < e.model->patchCount() ? int64_t(primitive) : -1;
+      case Representation::Bezier:
+        return primitive < e.model->bezierPieces().size()
+                   ? int64_t(e.model->bezierPieces()[primitive].triangle)
+                   : -1;
     }
     return -1;
   }
