@@ -6,8 +6,9 @@
 namespace quadtri {
 namespace {
 
-constexpr int kMaxDepth = 10;
-constexpr int kStackSize = 4 * kMaxDepth + 8;  // depth first: at most 3 pending per level
+// Bisections: two make one midpoint 4-split, so 20 reach sub-triangles of 1/1024 the size.
+constexpr int kMaxDepth = 20;
+constexpr int kStackSize = kMaxDepth + 8;  // depth first: at most 1 pending per level
 constexpr int kMaxHits = 16;
 // Newton's root lies in a sub-triangle when its barycentric coordinates there are above −this.
 constexpr double kNodeSlack = 1e-6;
@@ -96,11 +97,23 @@ void subNet(const Net& in, Net& out) {
   }
 }
 
-constexpr Bary kBary[6] = {{1, 0, 0},     {0, 1, 0},     {0, 0, 1},
-                           {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
-// The 4 midpoint sub-triangles (subdivideBezierTriangle's order).
-constexpr Corner kChildren[4][3] = {
-    {kE0, kM01, kM02}, {kM01, kE1, kM12}, {kM02, kM12, kE2}, {kM12, kM02, kM01}};
+// Newest-vertex bisection: the edge opposite corner 0 is split at its midpoint m12 into
+// (m12, e0, e1) and (m12, e2, e0), the new vertex first, so that repeated bisection keeps
+// the sub-triangles' shapes (4 similarity classes). Both children come from one chain of
+// de Casteljau steps at m12: child a at (i, j, k) is point (k, 0) of the net after i steps,
+// child b point (0, j).
+void bisect(const Net& in, Net& a, Net& b) {
+  P3 net[BezierTriangle::kPoints];
+  std::copy(in.begin(), in.end(), net);
+  for (int i = 0; i <= 4; ++i) {
+    const int n = 4 - i;  // degree of the current net
+    if (i > 0) cornerStep<kM12>(net, n + 1, net);
+    for (int j = 0; j <= n; ++j) {
+      a[size_t(BezierTriangle::index(j, n - j))] = net[netIndex(n, n - j, 0)];
+      b[size_t(BezierTriangle::index(j, n - j))] = net[netIndex(n, 0, j)];
+    }
+  }
+}
 
 void child(const Net& in, int m, Net& out) {
   switch (m) {
@@ -184,6 +197,16 @@ Slopes slopes(const Net& net) {
     s.vylo = std::min(s.vylo, dvy[a]);
     s.vyhi = std::max(s.vyhi, dvy[a]);
   }
+  // The interval of det[∂u, ∂v] over the boxes first (cheap, enough where the node is flat
+  // enough), then every pair.
+  const double lo = std::min({s.uxlo * s.vylo, s.uxlo * s.vyhi, s.uxhi * s.vylo, s.uxhi * s.vyhi}) -
+                    std::max({s.uylo * s.vxlo, s.uylo * s.vxhi, s.uyhi * s.vxlo, s.uyhi * s.vxhi});
+  const double hi = std::max({s.uxlo * s.vylo, s.uxlo * s.vyhi, s.uxhi * s.vylo, s.uxhi * s.vyhi}) -
+                    std::min({s.uylo * s.vxlo, s.uylo * s.vxhi, s.uyhi * s.vxlo, s.uyhi * s.vxhi});
+  if (lo > 0.0 || hi < 0.0) {
+    s.injective = true;
+    return s;
+  }
   bool allPositive = true, allNegative = true;
   for (int a = 0; a < 10; ++a)
     for (int b = 0; b < 10; ++b) {
@@ -207,6 +230,9 @@ struct Node {
   double cu[3], cv[3];  // the sub-triangle's corners in the piece's (u, v)
   double zmin;
   int depth;
+  // An injective ancestor's Newton converged outside it: Newton from inside this node would most
+  // likely go there again, so the node is only split (and solved at the last level).
+  bool newtonWentOutside;
 };
 
 struct Box {
@@ -267,12 +293,13 @@ class Tracer {
     stack[0].cu[1] = 1, stack[0].cv[1] = 0;
     stack[0].cu[2] = 0, stack[0].cv[2] = 1;
     stack[0].depth = 0;
+    stack[0].newtonWentOutside = false;
     stack[0].zmin = rootBox.zlo;
     int top = 1;
     while (top > 0) {
       const Node node = stack[--top];  // a copy: its children take its place on the stack
       if (node.zmin > limit(found) + marginZ_) continue;
-      const bool last = node.depth >= kMaxDepth || top + 4 > kStackSize;
+      const bool last = node.depth >= kMaxDepth || top + 2 > kStackSize;
       const Slopes sl = slopes(node.net);
       // F at the centre, then the mean value form: F over the node lies in
       // F(c) + [∂F/∂u]·[−1/3, 2/3] + [∂F/∂v]·[−1/3, 2/3]; no root where that excludes 0.
@@ -281,33 +308,44 @@ class Tracer {
       P3 f, fu, fv;
       evaluate(root_, u, v, f, fu, fv);
       if (excluded(sl, f)) continue;
-      if (last || sl.injective) {
+      bool wentOutside = node.newtonWentOutside;
+      if (last || (sl.injective && !wentOutside)) {
         planarStart(node, u, v);
-        if (solve(node, sl.injective, last, u, v, found)) {
+        if (solve(node, sl.injective, last, u, v, wentOutside, found)) {
           if (mode_ == Mode::Any && found.any) return;
           continue;
         }
         if (last) continue;
       }
-      // Split: the children that survive culling, nearest pushed last (popped first).
-      Node* first = stack + top;
+      // Bisect: the children that survive culling, the nearer pushed last (popped first).
+      Node& a = stack[top];
+      Node& b = stack[top + 1];
+      bisect(node.net, a.net, b.net);
+      const double mu = 0.5 * (node.cu[1] + node.cu[2]), mv = 0.5 * (node.cv[1] + node.cv[2]);
+      a.cu[0] = b.cu[0] = mu;
+      a.cv[0] = b.cv[0] = mv;
+      a.cu[1] = b.cu[2] = node.cu[0];
+      a.cv[1] = b.cv[2] = node.cv[0];
+      a.cu[2] = node.cu[1];
+      a.cv[2] = node.cv[1];
+      b.cu[1] = node.cu[2];
+      b.cv[1] = node.cv[2];
+      a.depth = b.depth = node.depth + 1;
+      a.newtonWentOutside = b.newtonWentOutside = wentOutside;
+      const Box boxA = netBox(a.net), boxB = netBox(b.net);
+      a.zmin = boxA.zlo;
+      b.zmin = boxB.zlo;
+      const bool keepA = !culled(boxA, found), keepB = !culled(boxB, found);
       int pushed = 0;
-      for (int m = 0; m < 4; ++m) {
-        Node& c = stack[top + pushed];
-        child(node.net, m, c.net);
-        const Box box = netBox(c.net);
-        if (culled(box, found)) continue;
-        for (int k = 0; k < 3; ++k) {
-          const Bary& w = kBary[kChildren[m][k]];
-          c.cu[k] = w.w0 * node.cu[0] + w.w1 * node.cu[1] + w.w2 * node.cu[2];
-          c.cv[k] = w.w0 * node.cv[0] + w.w1 * node.cv[1] + w.w2 * node.cv[2];
-        }
-        c.zmin = box.zlo;
-        c.depth = node.depth + 1;
-        ++pushed;
+      if (keepA && keepB) {
+        if (a.zmin < b.zmin) std::swap(a, b);
+        pushed = 2;
+      } else if (keepA) {
+        pushed = 1;
+      } else if (keepB) {
+        a = b;
+        pushed = 1;
       }
-      std::sort(first, first + pushed,
-                [](const Node& a, const Node& b) { return a.zmin > b.zmin; });
       top += pushed;
     }
   }
@@ -393,11 +431,13 @@ class Tracer {
     found.any = true;
   }
 
-  // Newton from (u, v) in the node. True when the node is done: its root recorded (or
+  // Newton from (u, v) in the node (`wentOutside` set when it converges outside an injective
+  // one). True when the node is done: its root recorded (or
   // out of range), or, at the last level, whatever could be found. At the last level a node
   // that may fold also tries its corners, and the planar corner triangle stands in when Newton
   // finds nothing in the node.
-  bool solve(const Node& node, bool injective, bool last, double u, double v, Found& found) const {
+  bool solve(const Node& node, bool injective, bool last, double u, double v, bool& wentOutside,
+             Found& found) const {
     double z;
     bool converged = false;
     if (newton(root_, u, v, z)) {
@@ -405,6 +445,8 @@ class Tracer {
       if (inNode(node, u, v)) {
         record(u, v, z, found);
         if (injective) return true;  // the node's only root
+      } else {
+        wentOutside = injective;
       }
     }
     if (!last) return false;
