@@ -9,6 +9,9 @@ namespace {
 // Bisections: two make one midpoint 4-split, so 20 reach sub-triangles of 1/1024 the size.
 constexpr int kMaxDepth = 20;
 constexpr int kStackSize = kMaxDepth + 8;  // depth first: at most 1 pending per level
+// Past this many nodes (a degenerate piece, say one collapsed onto a segment the ray crosses)
+// the search stops, so no ray costs more than about this.
+constexpr int kMaxNodes = 2000;
 constexpr int kMaxHits = 16;
 // Newton's root lies in a sub-triangle when its barycentric coordinates there are above −this.
 constexpr double kNodeSlack = 1e-6;
@@ -142,8 +145,8 @@ inline void evaluate(const Net& net, double u, double v, P3& p, P3& du, P3& dv) 
 }
 
 // Newton on (x, y)(u, v) = 0 over the whole piece's projected net, from (u, v). On success
-// (u, v) is the root and z its ray parameter.
-bool newton(const Net& net, double& u, double& v, double& z) {
+// (u, v) is the root (|x|, |y| at most `residual` there) and z its ray parameter.
+bool newton(const Net& net, double residual, double& u, double& v, double& z) {
   P3 p, pu, pv;
   for (int it = 0; it < 24; ++it) {
     evaluate(net, u, v, p, pu, pv);
@@ -158,7 +161,8 @@ bool newton(const Net& net, double& u, double& v, double& z) {
     if (std::max(std::abs(su), std::abs(sv)) < 1e-12) {
       evaluate(net, u, v, p, pu, pv);
       z = p.z;
-      return true;
+      // A tiny step with a large residual: a singular Jacobian, not a root.
+      return std::abs(p.x) <= residual && std::abs(p.y) <= residual;
     }
   }
   return false;
@@ -229,6 +233,7 @@ struct Node {
   Net net;
   double cu[3], cv[3];  // the sub-triangle's corners in the piece's (u, v)
   double zmin;
+  double extent;  // the larger side of the net's 2D box
   int depth;
   // An injective ancestor's Newton converged outside it: Newton from inside this node would most
   // likely go there again, so the node is only split (and solved at the last level).
@@ -279,6 +284,7 @@ class Tracer {
     }
     // Rounding of the projection and of ten levels of splitting stays far below these.
     marginXY_ = 1e-11 * scale;
+    residual_ = 1e-9 * scale;
     marginZ_ = 1e-11 * (zscale + scale / std::sqrt(dd));
   }
 
@@ -295,11 +301,15 @@ class Tracer {
     stack[0].depth = 0;
     stack[0].newtonWentOutside = false;
     stack[0].zmin = rootBox.zlo;
-    int top = 1;
+    stack[0].extent = std::max(rootBox.xhi - rootBox.xlo, rootBox.yhi - rootBox.ylo);
+    int top = 1, visited = 0;
     while (top > 0) {
       const Node node = stack[--top];  // a copy: its children take its place on the stack
       if (node.zmin > limit(found) + marginZ_) continue;
-      const bool last = node.depth >= kMaxDepth || top + 2 > kStackSize;
+      if (++visited > kMaxNodes) return;
+      // A leaf at the last level, or once the net is as small as the rounding margin.
+      const bool last =
+          node.depth >= kMaxDepth || top + 2 > kStackSize || node.extent <= 4.0 * marginXY_;
       const Slopes sl = slopes(node.net);
       // F at the centre, then the mean value form: F over the node lies in
       // F(c) + [∂F/∂u]·[−1/3, 2/3] + [∂F/∂v]·[−1/3, 2/3]; no root where that excludes 0.
@@ -335,6 +345,8 @@ class Tracer {
       const Box boxA = netBox(a.net), boxB = netBox(b.net);
       a.zmin = boxA.zlo;
       b.zmin = boxB.zlo;
+      a.extent = std::max(boxA.xhi - boxA.xlo, boxA.yhi - boxA.ylo);
+      b.extent = std::max(boxB.xhi - boxB.xlo, boxB.yhi - boxB.ylo);
       const bool keepA = !culled(boxA, found), keepB = !culled(boxB, found);
       int pushed = 0;
       if (keepA && keepB) {
@@ -371,13 +383,17 @@ class Tracer {
   }
 
   // Barycentric coordinates of the ray (the 2D origin) in the node's corner triangle, whose
-  // corners lie on the surface; false when the triangle is degenerate.
+  // corners lie on the surface; false when the triangle is degenerate (its area below 1e-9 of
+  // its longest side squared).
   static bool planarCoordinates(const Node& node, double& l0, double& l1, double& l2) {
     const P3& A = node.net[size_t(BezierTriangle::index(0, 0))];
     const P3& B = node.net[size_t(BezierTriangle::index(4, 0))];
     const P3& C = node.net[size_t(BezierTriangle::index(0, 4))];
     const double area = (B.x - A.x) * (C.y - A.y) - (B.y - A.y) * (C.x - A.x);
-    if (!(std::abs(area) > 0.0)) return false;
+    const double side2 = std::max({(B.x - A.x) * (B.x - A.x) + (B.y - A.y) * (B.y - A.y),
+                                   (C.x - A.x) * (C.x - A.x) + (C.y - A.y) * (C.y - A.y),
+                                   (C.x - B.x) * (C.x - B.x) + (C.y - B.y) * (C.y - B.y)});
+    if (!(std::abs(area) > 1e-9 * side2)) return false;
     l1 = ((-A.x) * (C.y - A.y) - (-A.y) * (C.x - A.x)) / area;
     l2 = ((B.x - A.x) * (-A.y) - (B.y - A.y) * (-A.x)) / area;
     l0 = 1.0 - l1 - l2;
@@ -440,7 +456,7 @@ class Tracer {
              Found& found) const {
     double z;
     bool converged = false;
-    if (newton(root_, u, v, z)) {
+    if (newton(root_, residual_, u, v, z)) {
       converged = true;
       if (inNode(node, u, v)) {
         record(u, v, z, found);
@@ -453,7 +469,7 @@ class Tracer {
     if (!injective) {
       for (int k = 0; k < 3; ++k) {
         double cu = node.cu[k], cv = node.cv[k];
-        if (newton(root_, cu, cv, z)) {
+        if (newton(root_, residual_, cu, cv, z)) {
           converged = true;
           if (inNode(node, cu, cv)) record(cu, cv, z, found);
         }
@@ -475,7 +491,7 @@ class Tracer {
   Net root_;
   double tmin_, tmax_;
   Mode mode_;
-  double marginXY_ = 0.0, marginZ_ = 0.0;
+  double marginXY_ = 0.0, marginZ_ = 0.0, residual_ = 0.0;
   Node stack_[kStackSize];
 };
 

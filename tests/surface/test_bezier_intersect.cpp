@@ -274,6 +274,35 @@ TEST(BezierIntersect, SharedEdgesAreWatertight) {
   EXPECT_EQ(doubles, 0);
 }
 
+// Pieces collapsed to a point or a segment: rays through them end (a node budget bounds the
+// work) and report nothing off the ray.
+TEST(BezierIntersect, DegeneratePiecesAreCheap) {
+  BezierTriangle point;
+  point.b.fill(Vec3(0.5, 0.25, 1.0));
+  point.updateBounds();
+  const BezierTriangle segment = flatPiece(Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(0.5, 0.5, 0.5));
+  Pcg32 rng(29);
+  std::vector<BezierHit> all;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 d = uniformDirection(rng);
+    for (const BezierTriangle* piece : std::array<const BezierTriangle*, 2>{&point, &segment}) {
+      const Vec3 on = piece == &point ? point.b[0] : Vec3::Constant(rng.nextDouble());
+      const Vec3 origin = on - 2.0 * d;
+      BezierHit hit;
+      if (intersectBezierTriangle(*piece, origin, d, 0.0, kInfinity, hit)) {
+        EXPECT_NEAR((piece->position(hit.u, hit.v) - (origin + hit.t * d)).norm(), 0.0, 1e-6);
+      }
+      all.clear();
+      intersectBezierTriangleAll(*piece, origin, d, 0.0, kInfinity, all);
+      EXPECT_LE(all.size(), 16u);
+    }
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 20.0);  // about 2 ms a ray at worst, not unbounded
+}
+
 // Rough cost of one ray–piece test on random rays through the piece's box (printed).
 TEST(BezierIntersect, Timing) {
   Pcg32 rng(23);
