@@ -5,19 +5,24 @@
 // parameter of the point's foot on the line. The ray hits the piece at (u, v) exactly where
 // (x, y)(u, v) = (0, 0), and then t = z(u, v). By the convex-hull property a (sub-)net whose
 // 2D box excludes the origin, or whose z range lies outside (tmin, tmax) (or beyond the nearest
-// hit found so far), holds no hit and is culled. Surviving nets are split into their 4
-// midpoint sub-triangles by blossoming (de Casteljau steps with the sub-triangle's corners),
-// depth first, nearest z first, on a fixed-size stack (no heap allocation).
+// hit found so far), holds no hit and is culled; so is one whose mean-value enclosure
+// F(centre) + [∂F/∂u]·Δu + [∂F/∂v]·Δv excludes it. Surviving nets are bisected (newest-vertex
+// bisection: the edge opposite corner 0 at its midpoint, by one chain of de Casteljau steps that
+// gives both halves; two bisections make a midpoint 4-split), depth first, nearer half first,
+// on a fixed-size stack (no heap allocation).
 //
 // A net is solved once it is known to hold at most one hit: when every 2D cross product of a
 // control vector of ∂(x, y)/∂u with one of ∂(x, y)/∂v has the same sign, the average Jacobian
 // between any two points of the sub-triangle is non-singular, so (x, y) is injective on it.
-// Newton then runs on the 2D system of the WHOLE piece from the sub-triangle's centre; a root
-// is accepted when it lies in the sub-triangle (up to 1e-6 of its size) and in the piece's
-// domain up to 1e-9, so a ray through the boundary two pieces share is found by both (hits
-// from neighbouring sub-triangles are merged by (u, v)). When Newton does not converge there,
-// or the net may fold, splitting goes on; at the maximum depth (10) Newton is tried anyway and,
-// should it still fail, the sub-triangle's planar corner triangle stands in, so no hit is lost.
+// Newton then runs on the 2D system of the WHOLE piece, from where the ray crosses the
+// sub-triangle's planar corner triangle; a root is accepted when it lies in the sub-triangle
+// (up to 1e-6 of its size) and in the piece's domain up to 1e-9, so a ray through the boundary
+// two pieces share is found by both (hits from neighbouring sub-triangles are merged by (u, v)).
+// When Newton does not converge there, or converges outside (then the halves skip it), or the
+// net may fold, bisection goes on; at the maximum depth (20 bisections: 1/1024 of the piece's
+// size) Newton is tried anyway, from the corners too where the net may fold, and should it
+// still fail, the planar corner triangle stands in, so no hit is lost. A budget of nodes bounds
+// the work on degenerate pieces.
 #pragma once
 
 #include <vector>
