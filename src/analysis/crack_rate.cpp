@@ -110,7 +110,8 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
   // From a point of the grown box, the whole box lies within its diagonal.
   const double reach = box.diagonal().norm();
   const std::optional<TriangleCrossings> triangles =
-      geometry.patches ? std::nullopt : std::optional<TriangleCrossings>(geometry.triangles);
+      geometry.patches || geometry.bezier ? std::nullopt
+                                          : std::optional<TriangleCrossings>(geometry.triangles);
 
   auto cracked = [&](const Vec3& p, const Vec3& d, std::vector<RayHit>& hits,
                      std::vector<LineHit>& line, std::vector<uint32_t>& scratch) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "quadtri/math/error.h"
+#include "quadtri/surface/bezier_intersect.h"
 
 namespace quadtri {
 namespace {
@@ -36,6 +37,12 @@ struct PatchGeometry {
   double margin = 0.0;
 };
 
+// The same for Bézier pieces.
+struct BezierGeometry {
+  const std::vector<BezierTriangle>* pieces = nullptr;
+  double margin = 0.0;
+};
+
 // Embree's context extended with the double-precision ray, so quadric patches are intersected
 // in double while Embree traverses with floats. Embree hands this pointer to the callbacks.
 struct TraceContext {
@@ -45,6 +52,9 @@ struct TraceContext {
   double patchT = kInfinity;  // the nearest patch hit so far, in double
   unsigned patchGeometry = kInvalidId, patchPrimitive = kInvalidId;
   const std::vector<QuadricPatch>* patches = nullptr;  // those of the nearest patch hit
+  // Or the pieces of the nearest hit, when it is a Bézier piece, and its (u, v).
+  const std::vector<BezierTriangle>* pieces = nullptr;
+  double pieceU = 0.0, pieceV = 0.0;
   std::vector<RayHit>* hits = nullptr;  // set by allHits(): record every hit, keep none
 };
 
@@ -120,6 +130,7 @@ void intersectPatch(const RTCIntersectFunctionNArguments* args) {
   ctx->patchGeometry = args->geomID;
   ctx->patchPrimitive = args->primID;
   ctx->patches = &patches;
+  ctx->pieces = nullptr;
   rayhit->ray.tfar = roundDown(t);
   rayhit->hit.geomID = args->geomID;
   rayhit->hit.primID = args->primID;
@@ -136,6 +147,83 @@ void occludedPatch(const RTCOccludedFunctionNArguments* args) {
   double t;
   if (intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
                          ctx->ray->tfar, t))
+    ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
+}
+
+RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geometry,
+                 unsigned primitive) {
+  RayHit hit;
+  hit.t = h.t;
+  hit.geometry = geometry;
+  hit.primitive = primitive;
+  hit.u = h.u;
+  hit.v = h.v;
+  hit.geometricNormal = piece.normal(h.u, h.v);
+  // Where ∂u × ∂v vanishes (a collapsed corner), the normal a hair towards the centre.
+  if (hit.geometricNormal.squaredNorm() == 0.0)
+    hit.geometricNormal =
+        piece.normal(h.u + 1e-7 * (1.0 / 3.0 - h.u), h.v + 1e-7 * (1.0 / 3.0 - h.v));
+  return hit;
+}
+
+void bezierBounds(const RTCBoundsFunctionArguments* args) {
+  const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
+  const Bounds3& b = (*g->pieces)[args->primID].bounds;
+  RTCBounds* o = args->bounds_o;
+  o->lower_x = roundDown(b.lo.x() - g->margin);
+  o->lower_y = roundDown(b.lo.y() - g->margin);
+  o->lower_z = roundDown(b.lo.z() - g->margin);
+  o->upper_x = roundUp(b.hi.x() + g->margin);
+  o->upper_y = roundUp(b.hi.y() + g->margin);
+  o->upper_z = roundUp(b.hi.z() + g->margin);
+}
+
+void intersectBezier(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* ctx = reinterpret_cast<TraceContext*>(args->context);
+  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const std::vector<BezierTriangle>& pieces =
+      *static_cast<const BezierGeometry*>(args->geometryUserPtr)->pieces;
+  const BezierTriangle& piece = pieces[args->primID];
+  if (ctx->hits) {  // allHits(): every hit of the piece, without shortening the ray
+    thread_local std::vector<BezierHit> found;
+    found.clear();
+    intersectBezierTriangleAll(piece, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                               ctx->ray->tfar, found);
+    for (const BezierHit& h : found)
+      ctx->hits->push_back(bezierHit(piece, h, args->geomID, args->primID));
+    return;
+  }
+  // As intersectPatch: the nearest user-geometry hit so far bounds the search exactly.
+  const bool userIsNearest =
+      rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
+  const double tmax = userIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
+  BezierHit h;
+  if (!intersectBezierTriangle(piece, ctx->ray->origin, ctx->ray->direction, ctx->tnear, tmax, h))
+    return;
+  ctx->patchT = h.t;
+  ctx->patchGeometry = args->geomID;
+  ctx->patchPrimitive = args->primID;
+  ctx->patches = nullptr;
+  ctx->pieces = &pieces;
+  ctx->pieceU = h.u;
+  ctx->pieceV = h.v;
+  rayhit->ray.tfar = roundDown(h.t);
+  rayhit->hit.geomID = args->geomID;
+  rayhit->hit.primID = args->primID;
+  rayhit->hit.instID[0] = args->context->instID[0];
+  rayhit->hit.u = float(h.u);
+  rayhit->hit.v = float(h.v);
+}
+
+void occludedBezier(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
+  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
+  const std::vector<BezierTriangle>& pieces =
+      *static_cast<const BezierGeometry*>(args->geometryUserPtr)->pieces;
+  if (occludesBezierTriangle(pieces[args->primID], ctx->ray->origin, ctx->ray->direction,
+                             ctx->tnear, ctx->ray->tfar))
     ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
 }
 
@@ -163,6 +251,7 @@ struct Accel::Impl {
   bool committed = false;
   size_t bytes = 0;
   std::vector<std::unique_ptr<PatchGeometry>> patchGeometries;  // stable user pointers
+  std::vector<std::unique_ptr<BezierGeometry>> bezierGeometries;
 
   // Embree reports errors through this callback from inside its C API; throwing across it is
   // not allowed, so the message is kept and thrown by check() once the call has returned.
@@ -272,6 +361,39 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
   return id;
 }
 
+uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
+  if (impl_->committed)
+    fail("adding Bézier pieces: the acceleration structure is already committed");
+  if (pieces.empty()) fail("Bézier pieces for the acceleration structure: there are none");
+  double extent = 0.0;
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const Bounds3& b = pieces[i].bounds;
+    if (b.empty() || !allFinite(b.lo) || !allFinite(b.hi))
+      fail("Bézier piece {}: its bounds are empty or not finite", i);
+    for (const Vec3& p : pieces[i].b)
+      if (!allFinite(p) || (p.array() < b.lo.array()).any() || (p.array() > b.hi.array()).any())
+        fail("Bézier piece {}: a control point is not finite or outside the piece's bounds", i);
+    extent = std::max({extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
+  }
+  auto user = std::make_unique<BezierGeometry>();
+  user->pieces = &pieces;
+  user->margin = 1e-5 * extent;
+  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+  impl_->check("creating a user geometry");
+  rtcSetGeometryUserPrimitiveCount(geom, unsigned(pieces.size()));
+  rtcSetGeometryUserData(geom, user.get());
+  rtcSetGeometryBoundsFunction(geom, &bezierBounds, nullptr);
+  rtcSetGeometryIntersectFunction(geom, &intersectBezier);
+  rtcSetGeometryOccludedFunction(geom, &occludedBezier);
+  rtcCommitGeometry(geom);
+  const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
+  rtcReleaseGeometry(geom);
+  impl_->check("attaching the Bézier pieces");
+  impl_->bezierGeometries.push_back(std::move(user));
+  impl_->bytes += pieces.size() * sizeof(BezierTriangle);
+  return id;
+}
+
 void Accel::commit() {
   rtcCommitScene(impl_->scene);
   impl_->check("building the acceleration structure");
@@ -291,6 +413,11 @@ RayHit Accel::intersect(const Ray& ray) const {
   rtcIntersect1(impl_->scene, &ctx.embree, &rayhit);
   RayHit hit;
   if (rayhit.hit.geomID == kInvalidId) return hit;
+  if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive &&
+      ctx.pieces)
+    return bezierHit((*ctx.pieces)[rayhit.hit.primID],
+                     BezierHit{ctx.patchT, ctx.pieceU, ctx.pieceV}, rayhit.hit.geomID,
+                     rayhit.hit.primID);
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive)
     return patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID);
   hit.t = rayhit.ray.tfar;

@@ -5,11 +5,12 @@
 namespace quadtri {
 
 size_t ModelGeometry::primitiveCount() const {
+  if (bezier) return bezier->size();
   return patches ? patches->size() : triangles.triangleCount();
 }
 
 size_t ModelGeometry::bytes() const {
-  if (patches) return patchBytes;
+  if (patches || bezier) return patchBytes;
   constexpr size_t kTriple = 3 * sizeof(float);
   size_t total = (triangles.positions.size() + triangles.triangles.size()) * kTriple;
   if (shadingNormals && triangles.hasNormals()) {
@@ -32,8 +33,6 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
       g.triangles = tessellate(model, tessellation);
       g.shadingNormals = true;
       break;
-    case Representation::Bezier:
-      fail("model '{}': Bézier pieces cannot be traced yet", model.name());
     case Representation::Implicit:
       g.patches = &model.renderPatches();
       g.patchBytes = model.patchMemoryBytes();
@@ -42,11 +41,24 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
         fail("model '{}': {} quadric patches for {} triangles", model.name(),
              model.quadricPatches().size(), model.patchCount());
       break;
+    case Representation::Bezier:
+      g.bezier = &model.bezierPieces();
+      if (g.bezier->empty())
+        fail("model '{}': a Bezier model without Bézier pieces ({} triangles)", model.name(),
+             model.patchCount());
+      for (size_t i = 0; i < g.bezier->size(); ++i)
+        if ((*g.bezier)[i].triangle >= model.patchCount())
+          fail("model '{}': Bézier piece {} names triangle {} of {}", model.name(), i,
+               (*g.bezier)[i].triangle, model.patchCount());
+      g.patchBytes = model.patchMemoryBytes();
+      if (g.patchBytes == 0) g.patchBytes = g.bezier->size() * sizeof(BezierTriangle);
+      break;
   }
   return g;
 }
 
 uint32_t addModelGeometry(Accel& accel, const ModelGeometry& geometry) {
+  if (geometry.bezier) return accel.addBezierTriangles(*geometry.bezier);
   return geometry.patches ? accel.addQuadricPatches(*geometry.patches)
                           : accel.addTriangles(geometry.triangles);
 }

@@ -91,7 +91,8 @@ an unknown model or a mesh it rejects.
       .def_property_readonly(
           "representation",
           [](const PyModel& p) { return representationName(p.model->representation()); },
-          "How it is drawn: 'input-triangles', 'tessellated' or 'implicit' (quadric patches).")
+          "How it is drawn: 'input-triangles', 'tessellated', 'implicit' (quadric patches) or "
+          "'bezier' (quartic Bézier pieces).")
       .def_property_readonly("patch_count", [](const PyModel& p) { return p.model->patchCount(); })
       .def_property_readonly("tessellation",
                              [](const PyModel& p) { return tessellationValue(p.tessellation); })

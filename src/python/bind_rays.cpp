@@ -34,7 +34,9 @@ struct PyRayScene {
       case Representation::Implicit:
         return primitive < e.model->patchCount() ? int64_t(primitive) : -1;
       case Representation::Bezier:
-        return int64_t(primitive / 3);
+        return primitive < e.model->bezierPieces().size()
+                   ? int64_t(e.model->bezierPieces()[primitive].triangle)
+                   : -1;
     }
     return -1;
   }
@@ -104,7 +106,8 @@ void forEachRay(size_t count, F f) {
 void bindRays(py::module_& m) {
   py::class_<PyRayScene>(m, "RayScene", R"doc(
 Models in one Embree scene, built as the renderer builds them (RenderScene): input triangles,
-tessellated triangles (each model's tessellation) or quadric patches with their edge bridges.
+tessellated triangles (each model's tessellation), quadric patches with their edge bridges, or
+Bézier pieces.
 Models are placed as they are (no transform); the scene keeps them alive.
 
 RayScene([model, ...])
@@ -190,8 +193,8 @@ directions need not be unit, t is in units of their length. Returns a dict of ar
                            patch's normal (implicit models; an edge bridge's mean of its two
                            patches'), the face normal (flat); 0 on a miss
   primitive         (k,)   int64: the triangle of the render geometry (input triangles, or the
-                           tessellation's), or the patch (implicit; >= patch_count: a bridge); -1
-                           on a miss
+                           tessellation's), or the patch (implicit; >= patch_count: a bridge), or
+                           the Bézier piece (bezier); -1 on a miss
   patch             (k,)   int64: the input triangle the hit belongs to; -1 on a miss or a bridge
   geometry          (k,)   int64: the index of the hit model in the list; -1 on a miss
 )doc")

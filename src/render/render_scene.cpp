@@ -40,7 +40,18 @@ uint32_t RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
   GeometryRecord record;
   record.bsdf = std::move(bsdf);
   ModelGeometry geometry = modelGeometry(*model, tessellation);
+  // Refused before anything is counted, so a failed call leaves the scene as it was.
+  if (geometry.bezier && areaRadiance)
+    fail("{}: an area emitter needs triangles or a sphere, not the Bézier model '{}'", name,
+         model->name());
   primitives_ += geometry.primitiveCount();
+  if (geometry.bezier) {
+    record.normals = GeometryRecord::Normals::Surface;
+    record.bezier = geometry.bezier;
+    for (const BezierTriangle& piece : *geometry.bezier) bounds_.extend(piece.bounds);
+    record.owner = model;
+    return addRecord(std::move(record), addModelGeometry(accel_, geometry));
+  }
   if (geometry.patches) {
     if (areaRadiance)
       fail("{}: an area emitter needs triangles or a sphere, not the implicit model '{}'", name,
@@ -152,6 +163,18 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
   si.geometry = &record;
   si.geometryId = hit.geometry;
   si.primitive = hit.primitive;
+  if (record.bezier) {
+    // The exact surface point of the piece at the double-precision (u, v) of the hit.
+    const BezierTriangle& piece = (*record.bezier)[hit.primitive];
+    si.p = piece.position(hit.u, hit.v);
+    si.geometricNormal = hit.geometricNormal;
+    if (si.geometricNormal.squaredNorm() == 0.0) si.geometricNormal = -ray.direction;
+    si.shadingNormal = si.geometricNormal;
+    si.offset = floatErrorOffset(
+        std::max({maxAbs(si.p), maxAbs(piece.bounds.lo), maxAbs(piece.bounds.hi)}));
+    si.liftedP = si.p;
+    return si;
+  }
   if (record.patches) {
     const QuadricPatch& patch = (*record.patches)[hit.primitive];
     // Embree hands back t as a float: one Newton step along the gradient puts the point back

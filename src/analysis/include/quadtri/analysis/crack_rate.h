@@ -26,8 +26,9 @@ struct CrackRateOptions {
 /// double precision with edge-side signs (the triple product d·((a−o)×(b−o))) computed once per
 /// undirected edge and negated for the opposite direction, so the two triangles of an edge
 /// always agree and every line crosses a closed mesh an even number of times: `flat` scores
-/// exactly 0. Patches: hits closer than 1e-7 × the box diagonal merge when they cross the same
-/// way (one crossing through a shared boundary); a cluster that enters and leaves counts twice.
+/// exactly 0. Patches and Bézier pieces: hits closer than 1e-7 × the box diagonal merge when they
+/// cross the same way (one crossing through a shared boundary); a cluster that enters and leaves
+/// counts twice.
 double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options = {});
 
 }  // namespace quadtri

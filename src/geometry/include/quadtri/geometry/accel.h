@@ -1,5 +1,5 @@
-// The ray-tracing acceleration structure: Embree 3 with native triangles and quadric patches as
-// user geometry. Shared by the renderer and the crack-rate analysis.
+// The ray-tracing acceleration structure: Embree 3 with native triangles, and quadric patches
+// and Bézier pieces as user geometry. Shared by the renderer and the crack-rate analysis.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 
 #include "quadtri/math/vec.h"
 #include "quadtri/mesh/triangle_mesh.h"
+#include "quadtri/surface/bezier_triangle.h"
 #include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
@@ -24,7 +25,7 @@ struct RayHit {
   double t = kInfinity;
   uint32_t geometry = ~0u;
   uint32_t primitive = ~0u;
-  double u = 0, v = 0;                  ///< barycentric coordinates of the hit (triangles)
+  double u = 0, v = 0;  ///< barycentric coordinates of the hit (triangles, Bézier pieces)
   Vec3 geometricNormal = Vec3::Zero();  ///< unit, not flipped towards the ray (zero: no hit)
   bool valid() const { return geometry != ~0u; }
 };
@@ -47,6 +48,11 @@ class Accel {
   /// Adds quadric patches as one Embree user geometry with a bound per patch; the patches are
   /// referenced, not copied, and must outlive the Accel. Returns its geometry id.
   uint32_t addQuadricPatches(const std::vector<QuadricPatch>& patches);
+  /// Adds Bézier pieces as one Embree user geometry, one primitive per piece bounded by its
+  /// control points, intersected in double precision (bezier_intersect.h); referenced like the
+  /// patches. A hit's (u, v) is the piece's and its geometricNormal piece.normal(u, v).
+  /// Returns its geometry id.
+  uint32_t addBezierTriangles(const std::vector<BezierTriangle>& pieces);
   void commit();
 
   /// Nearest hit in (ray.tnear, ray.tfar), or an invalid RayHit.

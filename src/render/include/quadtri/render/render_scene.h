@@ -22,13 +22,15 @@ struct GeometryRecord {
     Geometric,     ///< flat triangles: the face normal
     Interpolated,  ///< barycentric interpolation of per-corner normals, renormalised, no correction
     Gradient,      ///< quadric patches: the oriented, normalised gradient
+    Surface,       ///< Bézier pieces: the oriented, normalised ∂u × ∂v of the piece
   } normals = Normals::Geometric;
   /// shading-offset: rays leaving towards the shading normal's side start from the lifted point
   /// of shadingOffsetPoint (only with Interpolated normals on triangles).
   bool liftRayOrigins = false;
-  std::shared_ptr<const TriangleMesh> mesh;            ///< triangles, in world space
-  const std::vector<QuadricPatch>* patches = nullptr;  ///< patches, in world space
-  std::shared_ptr<const void> owner;                   ///< keeps `patches` alive
+  std::shared_ptr<const TriangleMesh> mesh;             ///< triangles, in world space
+  const std::vector<QuadricPatch>* patches = nullptr;   ///< patches, in world space
+  const std::vector<BezierTriangle>* bezier = nullptr;  ///< Bézier pieces, in world space
+  std::shared_ptr<const void> owner;                    ///< keeps `patches` or `bezier` alive
   std::shared_ptr<const Bsdf> bsdf;
   const Emitter* emitter = nullptr;  ///< area light on this geometry, if any
 };
@@ -57,9 +59,10 @@ class RenderScene {
   RenderScene& operator=(const RenderScene&) = delete;
 
   /// Adds a world-space model as the renderer draws it: its triangles (flat: face normals;
-  /// shading: interpolated normals), its tessellation (interpolated surface normals) or its
-  /// quadric patches (gradient normals). With `areaRadiance`, the geometry is an area light;
-  /// implicit models cannot be (Error naming `name`). Returns the geometry's id
+  /// shading: interpolated normals), its tessellation (interpolated surface normals), its
+  /// quadric patches (gradient normals) or its Bézier pieces (their surface normals). With
+  /// `areaRadiance`, the geometry is an area light; implicit and Bezier models cannot be (Error
+  /// naming `name`). Returns the geometry's id
   /// (SurfaceInteraction::geometryId of its hits).
   uint32_t addModel(std::shared_ptr<const SurfaceModel> model, const Tessellation& tessellation,
                     std::shared_ptr<const Bsdf> bsdf, const std::optional<Color>& areaRadiance,

@@ -44,7 +44,7 @@ class G1Model final : public SurfaceModel {
   explicit G1Model(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "quadric-g1"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
-  Representation representation() const override { return Representation::Tessellated; }
+  Representation representation() const override { return Representation::Bezier; }
   const std::vector<BezierTriangle>& bezierPieces() const override { return pieces_; }
   size_t patchMemoryBytes() const override { return pieces_.size() * sizeof(BezierTriangle); }
   nlohmann::json patchJson(size_t t) const override;

@@ -1,0 +1,254 @@
+// Bézier pieces as Embree user geometry: the Accel agrees with the direct intersector, closed
+// surfaces of pieces have no cracks, and RenderScene shades their hits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "fixtures/bezier_pieces.h"
+#include "quadtri/analysis/crack_rate.h"
+#include "quadtri/geometry/accel.h"
+#include "quadtri/geometry/model_geometry.h"
+#include "quadtri/geometry/rng.h"
+#include "quadtri/math/error.h"
+#include "quadtri/render/bsdf/diffuse.h"
+#include "quadtri/render/render_scene.h"
+
+namespace quadtri {
+namespace {
+
+Vec3 uniformDirection(Pcg32& rng) {
+  const double z = 1.0 - 2.0 * rng.nextDouble(), phi = 2.0 * kPi * rng.nextDouble();
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+// Every edge of every piece is some other piece's edge, run the other way, with bitwise equal
+// control points (the closed fixtures rely on it).
+bool edgesShared(const std::vector<BezierTriangle>& pieces) {
+  for (size_t a = 0; a < pieces.size(); ++a)
+    for (int ea = 0; ea < 3; ++ea) {
+      bool found = false;
+      for (size_t b = 0; b < pieces.size() && !found; ++b)
+        for (int eb = 0; eb < 3 && !found; ++eb) {
+          if (a == b) continue;
+          bool same = true;
+          for (int m = 0; m <= 4; ++m)
+            same &= pieces[a].b[size_t(fixtures::edgeIndex(ea, m))] ==
+                    pieces[b].b[size_t(fixtures::edgeIndex(eb, 4 - m))];
+          found = same;
+        }
+      if (!found) return false;
+    }
+  return true;
+}
+
+// A few curved pieces scattered in space, and a paraboloid.
+std::vector<BezierTriangle> scatteredPieces() {
+  Pcg32 rng(31);
+  std::vector<BezierTriangle> pieces;
+  for (int i = 0; i < 12; ++i) {
+    const Vec3 base(2.0 * rng.nextDouble(), 2.0 * rng.nextDouble(), 2.0 * rng.nextDouble());
+    BezierTriangle piece = fixtures::bumpyPiece(base, base + Vec3(0.8, 0.1, 0.2),
+                                                base + Vec3(0.1, 0.7, -0.1), 0.3, rng);
+    piece.orientation = i % 2 ? 1.0 : -1.0;
+    piece.triangle = uint32_t(i);
+    pieces.push_back(piece);
+  }
+  pieces.push_back(fixtures::paraboloidPiece(Vec2(-1, -1), Vec2(1.5, -1), Vec2(-1, 1.5)));
+  pieces.back().triangle = 12;
+  return pieces;
+}
+
+TEST(Accel, BezierPiecesAgreeWithTheDirectIntersector) {
+  enableFlushToZero();
+  const std::vector<BezierTriangle> pieces = scatteredPieces();
+  Accel accel(Accel::Options{false, true});
+  const uint32_t id = accel.addBezierTriangles(pieces);
+  accel.commit();
+  EXPECT_EQ(accel.geometryBytes(), pieces.size() * sizeof(BezierTriangle));
+  Pcg32 rng(37);
+  std::vector<BezierHit> direct;
+  std::vector<RayHit> hits;
+  int hitCount = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 target(3.0 * rng.nextDouble() - 0.5, 3.0 * rng.nextDouble() - 0.5,
+                      3.0 * rng.nextDouble() - 0.5);
+    const Vec3 d = uniformDirection(rng);
+    const Ray ray{target - 4.0 * d, d, 0.0, 4.0 + 4.0 * rng.nextDouble()};
+    // The direct answer: the nearest hit over every piece, and all of them.
+    BezierHit best;
+    uint32_t bestPiece = ~0u;
+    size_t all = 0;
+    for (uint32_t p = 0; p < pieces.size(); ++p) {
+      BezierHit h;
+      if (intersectBezierTriangle(pieces[p], ray.origin, ray.direction, ray.tnear, ray.tfar, h) &&
+          h.t < best.t)
+        best = h, bestPiece = p;
+      direct.clear();
+      all += intersectBezierTriangleAll(pieces[p], ray.origin, ray.direction, ray.tnear, ray.tfar,
+                                        direct);
+    }
+    const RayHit hit = accel.intersect(ray);
+    ASSERT_EQ(hit.valid(), bestPiece != ~0u) << i;
+    EXPECT_EQ(accel.occluded(ray), bestPiece != ~0u) << i;
+    hits.clear();
+    accel.allHits(ray, hits);
+    EXPECT_EQ(hits.size(), all) << i;
+    if (!hit.valid()) continue;
+    ++hitCount;
+    EXPECT_EQ(hit.geometry, id);
+    EXPECT_EQ(hit.primitive, bestPiece);
+    EXPECT_EQ(hit.t, best.t);
+    EXPECT_EQ(hit.u, best.u);
+    EXPECT_EQ(hit.v, best.v);
+    const Vec3 n = pieces[bestPiece].normal(best.u, best.v);
+    EXPECT_NEAR((hit.geometricNormal - n).norm(), 0.0, 1e-15);
+    EXPECT_NEAR(hit.geometricNormal.norm(), 1.0, 1e-12);
+    for (const RayHit& h : hits) {
+      EXPECT_EQ(h.geometry, id);
+      EXPECT_NEAR(
+          (pieces[h.primitive].position(h.u, h.v) - (ray.origin + h.t * ray.direction)).norm(), 0.0,
+          1e-9);
+    }
+    // Just short of the nearest hit, nothing.
+    EXPECT_FALSE(accel.occluded({ray.origin, ray.direction, 0.0, best.t * (1 - 1e-7)})) << i;
+  }
+  EXPECT_GT(hitCount, 2000);
+}
+
+TEST(Accel, BezierPieceOrientationSetsTheNormal) {
+  BezierTriangle piece = fixtures::flatPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  std::vector<BezierTriangle> up{piece};
+  piece.orientation = -1.0;
+  std::vector<BezierTriangle> down{piece};
+  for (const auto* pieces : {&up, &down}) {
+    Accel accel;
+    accel.addBezierTriangles(*pieces);
+    accel.commit();
+    const RayHit hit = accel.intersect({Vec3(0.25, 0.25, 1), Vec3(0, 0, -1)});
+    ASSERT_TRUE(hit.valid());
+    EXPECT_NEAR(hit.t, 1.0, 1e-12);
+    EXPECT_NEAR(hit.u, 0.25, 1e-12);
+    EXPECT_NEAR(hit.v, 0.25, 1e-12);
+    EXPECT_EQ(hit.geometricNormal, Vec3(0, 0, pieces->front().orientation));
+  }
+}
+
+TEST(Accel, BadBezierPiecesAreAnError) {
+  Accel accel;
+  std::vector<BezierTriangle> none;
+  EXPECT_THROW(accel.addBezierTriangles(none), Error);
+  std::vector<BezierTriangle> stale{
+      fixtures::flatPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0))};
+  stale[0].b[4] = Vec3(5, 0, 0);  // bounds not updated
+  EXPECT_THROW(accel.addBezierTriangles(stale), Error);
+  std::vector<BezierTriangle> empty(1);
+  EXPECT_THROW(accel.addBezierTriangles(empty), Error);
+}
+
+ModelGeometry bezierGeometry(const std::vector<BezierTriangle>& pieces) {
+  ModelGeometry g;
+  g.bezier = &pieces;
+  g.patchBytes = pieces.size() * sizeof(BezierTriangle);
+  return g;
+}
+
+TEST(CrackRate, ClosedSurfacesOfBezierPiecesAreWatertight) {
+  CrackRateOptions options;
+  options.lines = 100000;
+  for (const double bulge : {0.0, 0.6})
+    for (const bool split : {false, true}) {
+      const std::vector<BezierTriangle> pieces = fixtures::octahedronPieces(bulge, split);
+      ASSERT_TRUE(edgesShared(pieces)) << bulge << " " << split;
+      EXPECT_EQ(crackRate(bezierGeometry(pieces), options), 0.0) << bulge << " " << split;
+    }
+}
+
+TEST(CrackRate, BezierSurfaceWithAHoleCracks) {
+  std::vector<BezierTriangle> pieces = fixtures::octahedronPieces(0.6, true);
+  pieces.erase(pieces.begin() + 5);
+  ASSERT_FALSE(edgesShared(pieces));
+  CrackRateOptions options;
+  options.lines = 20000;
+  EXPECT_GT(crackRate(bezierGeometry(pieces), options), 0.003);
+}
+
+// A Bezier model for the tests: the octahedron's pieces over its 8 faces.
+class PiecesModel : public SurfaceModel {
+ public:
+  explicit PiecesModel(std::vector<BezierTriangle> pieces)
+      : SurfaceModel(octahedronMesh()), pieces_(std::move(pieces)) {}
+  std::string_view name() const override { return "test-bezier"; }
+  SurfacePoint evaluate(size_t t, double u, double v) const override {
+    return {pieces_[t].position(u, v), pieces_[t].normal(u, v)};
+  }
+  Representation representation() const override { return Representation::Bezier; }
+  const std::vector<BezierTriangle>& bezierPieces() const override { return pieces_; }
+  nlohmann::json patchJson(size_t) const override { return nlohmann::json::object(); }
+
+ private:
+  static std::shared_ptr<const TriangleMesh> octahedronMesh() {
+    auto mesh = std::make_shared<TriangleMesh>();
+    mesh->positions = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                       Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
+    for (uint32_t sx : {0u, 1u})
+      for (uint32_t sy : {2u, 3u})
+        for (uint32_t sz : {4u, 5u}) mesh->triangles.push_back({sx, sy, sz});
+    return mesh;
+  }
+  std::vector<BezierTriangle> pieces_;
+};
+
+TEST(CrackRate, BezierModelGeometry) {
+  const PiecesModel model(fixtures::octahedronPieces(0.6, true));
+  const ModelGeometry g = modelGeometry(model, Tessellation{});
+  ASSERT_EQ(g.bezier, &model.bezierPieces());
+  EXPECT_EQ(g.patches, nullptr);
+  EXPECT_EQ(g.primitiveCount(), 32u);
+  EXPECT_EQ(g.bytes(), 32 * sizeof(BezierTriangle));
+  CrackRateOptions options;
+  options.lines = 20000;
+  EXPECT_EQ(crackRate(g, options), 0.0);
+  const PiecesModel empty({});
+  EXPECT_THROW(modelGeometry(empty, Tessellation{}), Error);
+  std::vector<BezierTriangle> stray = fixtures::octahedronPieces(0.0, false);
+  stray[3].triangle = 8;
+  EXPECT_THROW(modelGeometry(PiecesModel(stray), Tessellation{}), Error);
+}
+
+TEST(RenderScene, BezierHitsLieOnThePiece) {
+  auto model = std::make_shared<PiecesModel>(fixtures::octahedronPieces(0.6, true));
+  auto bsdf = std::make_shared<Diffuse>(Color::Constant(0.5));
+  RenderScene scene;
+  EXPECT_THROW(scene.addModel(model, Tessellation{}, bsdf, Color::Constant(1.0), "lamp"), Error);
+  const uint32_t id = scene.addModel(model, Tessellation{}, bsdf, std::nullopt, "bulge");
+  scene.commit();
+  EXPECT_EQ(scene.primitiveCount(), 32u);
+  Pcg32 rng(41);
+  int hits = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const Vec3 d = uniformDirection(rng);
+    const Ray ray{-4.0 * d + 0.8 * uniformDirection(rng), d};
+    const auto si = scene.intersect(ray);
+    if (!si) continue;
+    ++hits;
+    EXPECT_EQ(si->geometryId, id);
+    ASSERT_LT(si->primitive, model->bezierPieces().size());
+    EXPECT_NEAR((si->p - (ray.origin + si->t * ray.direction)).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(si->geometricNormal.norm(), 1.0, 1e-12);
+    EXPECT_EQ(si->geometricNormal, si->shadingNormal);
+    EXPECT_LT(si->geometricNormal.dot(ray.direction), 0.0);  // outward, seen from outside
+    EXPECT_GT(si->offset, 0.0);
+    EXPECT_EQ(si->liftedP, si->p);
+    // Leaving outward finds nothing; leaving inward finds the far side.
+    EXPECT_FALSE(scene.intersect(scene.spawnRay(*si, si->geometricNormal))) << i;
+    const auto far = scene.intersect(scene.spawnRay(*si, -si->geometricNormal));
+    ASSERT_TRUE(far) << i;
+    EXPECT_GT(far->t, 1e-3);
+  }
+  EXPECT_GT(hits, 1000);
+}
+
+}  // namespace
+}  // namespace quadtri
