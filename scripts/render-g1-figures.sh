@@ -44,12 +44,12 @@ all_models+=,quadric-edges-eq42,quadric-implicit-robust,phong,pn,nagata,quadric-
 
 # 2. Reflection lines (scenes/g1/reflect-*.xml): a perfect mirror in a ring of tilted emissive
 #    bars. Where the surface or its shading normal is only C0, the reflected bars kink at the
-#    edges; on a G1 surface they stay continuous. The zoom on the teapot's body shows the lines
-#    at a size where kinks and jogs can be told apart.
+#    edges; on a G1 surface they stay continuous. The zooms (right of the icosphere's centre, the
+#    front of the teapot's body) show the lines at a size where kinks and jogs can be told apart.
 "$bin" figure --setup reflect --shapes icosphere,teapot \
   --models shading,quadric-param,pn,quadric-g1 --scenes scenes/g1 -D corpus="$corpus" \
   --res 256 --spp 32 -o "$out/g1_reflection_lines.png" --csv "$out/g1_reflection_lines_times.csv"
-"$bin" figure --setup reflect --shapes teapot-zoom \
+"$bin" figure --setup reflect --shapes icosphere-zoom,teapot-zoom \
   --models shading,quadric-param,pn,quadric-g1 --scenes scenes/g1 -D corpus="$corpus" \
   --res 256 --spp 32 -o "$out/g1_reflection_zoom.png" --csv "$out/g1_reflection_zoom_times.csv"
 
