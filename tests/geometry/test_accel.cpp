@@ -7,6 +7,7 @@
 #include "quadtri/geometry/rng.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/g1_model.h"
 
 namespace quadtri {
 namespace {
@@ -173,6 +174,17 @@ TEST(Accel, QuadricPatchReintersect) {
   accel.commit();
   // Patches intersect in double: an offset of 1e-9 suffices.
   expectNoReintersection(accel, 1e-9, 17);
+}
+
+TEST(Accel, G1PiecesReintersect) {
+  enableFlushToZero();
+  // quadric-g1 on a level-2 icosphere with the sphere's normals: a closed convex surface of
+  // 960 quartic pieces, traced in double.
+  const G1Model model(std::make_shared<const TriangleMesh>(icosphere(2)));
+  Accel accel;
+  accel.addBezierTriangles(model.bezierPieces());
+  accel.commit();
+  expectNoReintersection(accel, 1e-9, 23);
 }
 
 TEST(Accel, AllHitsReportsEveryCrossing) {

@@ -80,6 +80,12 @@ TEST(PathIntegrator, WhiteFurnaceImplicitPatchesOfRobustModel) {
   icosphereFurnace("quadric-implicit-robust", 1);
 }
 
+// Bézier pieces traced directly through Embree user geometry: quadric-g1's surface of an
+// icosphere is closed (C0), so the furnace holds.
+TEST(PathIntegrator, WhiteFurnaceBezierPiecesOfG1Model) {
+  icosphereFurnace("quadric-g1", 1);
+}
+
 // The thesis' implicit model as printed is not closed (its fourth clipping plane cuts into the
 // patch; `crack_rate` 0.16 on icosphere:1), so light leaks through: the furnace must show a
 // deficit well beyond noise. If the model ever closes up this test says so.
