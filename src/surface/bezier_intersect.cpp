@@ -6,8 +6,9 @@
 namespace quadtri {
 namespace {
 
-// Bisections: two make one midpoint 4-split, so 20 reach sub-triangles of 1/1024 the size.
-constexpr int kMaxDepth = 20;
+// Bisections: two make one midpoint 4-split, so 30 reach sub-triangles of 1/32768 the size
+// (20, 1/1024, lost two roots 1e-5 apart on a line grazing the torus at n·d = 2e-4).
+constexpr int kMaxDepth = 30;
 constexpr int kStackSize = kMaxDepth + 8;  // depth first: at most 1 pending per level
 // Past this many nodes (a degenerate piece, say one collapsed onto a segment the ray crosses)
 // the search stops, so no ray costs more than about this. A ray that grazes a piece near its
@@ -481,7 +482,7 @@ class Tracer {
     if (inside) return true;
     // Planar stand-in where Newton found no root in the node (it failed, or it went to another
     // root, as near a silhouette where the Jacobian nearly vanishes and two roots lie close): the
-    // corners of the net lie on the surface, and the node is 1/1024 of the piece.
+    // corners of the net lie on the surface, and the node is 1/32768 of the piece.
     double l0, l1, l2;
     if (!planarCoordinates(node, l0, l1, l2) || l0 < 0.0 || l1 < 0.0 || l2 < 0.0) return true;
     u = l0 * node.cu[0] + l1 * node.cu[1] + l2 * node.cu[2];

@@ -19,7 +19,7 @@
 // (up to 1e-6 of its size) and in the piece's domain up to 1e-9, so a ray through the boundary
 // two pieces share is found by both (hits from neighbouring sub-triangles are merged by (u, v)).
 // When Newton does not converge there, or converges outside (then the halves skip it), or the
-// net may fold, bisection goes on; at the maximum depth (20 bisections: 1/1024 of the piece's
+// net may fold, bisection goes on; at the maximum depth (30 bisections: 1/32768 of the piece's
 // size) Newton is tried anyway, from the corners too where the net may fold, and should it
 // still fail, the planar corner triangle stands in, so no hit is lost. A budget of nodes bounds
 // the work on degenerate pieces.
