@@ -70,26 +70,44 @@ class TriangleCrossings {
   std::vector<uint32_t> ringStart_, ring_;
 };
 
-// A patch hit at signed distance s along the line, and whether it enters the surface there.
+// A patch hit at signed distance s along the line, whether it enters the surface there, and
+// whether it may be one point of a boundary two primitives share (always, for quadric patches;
+// for Bézier pieces only a hit on its piece's boundary).
 struct LineHit {
   double s;
   bool entering;
+  bool shared = true;
 };
+
+// A Bézier hit within this of its piece's boundary (in the piece's barycentric coordinates) may
+// be the same point as its neighbour's hit; one farther inside is a crossing of its own.
+constexpr double kBoundaryBarycentric = 1e-6;
 
 // Crossings among patch hits: a cluster of hits closer than `mergeDistance` is one place where
 // the line meets the surface. Its hits are too close to order, so only their balance counts: a
 // line through a shared boundary enters every patch there (or a fold, a bridge and its patches
 // enter twice and leave once), which is one crossing; a cluster that enters as often as it
 // leaves touches the surface, which is two.
+//
+// Only hits that may lie on a shared boundary join a cluster's balance: an interior hit of a
+// Bézier piece is a crossing of its own however close another is (two sheets of a surface that
+// folds over itself near an edge, where the data bends it sharply, meet a line 1e-8 apart).
 size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance) {
   std::sort(line.begin(), line.end(), [](const LineHit& a, const LineHit& b) { return a.s < b.s; });
   size_t crossings = 0;
   for (size_t i = 0; i < line.size();) {
-    long balance = line[i].entering ? 1 : -1;
-    size_t j = i + 1;
-    for (; j < line.size() && line[j].s - line[j - 1].s < mergeDistance; ++j)
+    long balance = 0;
+    size_t shared = 0;
+    size_t j = i;
+    for (; j < line.size() && (j == i || line[j].s - line[j - 1].s < mergeDistance); ++j) {
+      if (!line[j].shared) {
+        ++crossings;
+        continue;
+      }
+      ++shared;
       balance += line[j].entering ? 1 : -1;
-    crossings += balance != 0 ? 1 : 2;
+    }
+    if (shared > 0) crossings += balance != 0 ? 1 : 2;
     i = j;
   }
   return crossings;
@@ -120,8 +138,12 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
     for (const double sign : {1.0, -1.0}) {
       const size_t before = hits.size();
       accel.allHits(Ray{p, sign * d, 0.0, reach}, hits);
-      for (size_t i = before; i < hits.size(); ++i)
-        line.push_back({sign * hits[i].t, hits[i].geometricNormal.dot(d) < 0.0});
+      for (size_t i = before; i < hits.size(); ++i) {
+        const RayHit& h = hits[i];
+        const bool shared =
+            !geometry.bezier || std::min({h.u, h.v, 1.0 - h.u - h.v}) < kBoundaryBarycentric;
+        line.push_back({sign * h.t, h.geometricNormal.dot(d) < 0.0, shared});
+      }
     }
     const size_t crossings =
         triangles ? triangles->count(p, d, hits, scratch) : patchCrossings(line, mergeDistance);
