@@ -8,8 +8,11 @@ namespace {
 
 // Bisections: two make one midpoint 4-split, so 30 reach sub-triangles of 1/32768 the size
 // (20, 1/1024, lost two roots 1e-5 apart on a line grazing the torus at n·d = 2e-4).
-constexpr int kMaxDepth = 30;
-constexpr int kStackSize = kMaxDepth + 8;  // depth first: at most 1 pending per level
+constexpr int kMaxDepthAll = 30;
+// Rendering queries stop at 20 (1/1024): deeper levels spend the smaller node budget below
+// before the nearest root is found.
+constexpr int kMaxDepthRender = 20;
+constexpr int kStackSize = kMaxDepthAll + 8;  // depth first: at most 1 pending per level
 // Past this many nodes (a degenerate piece, say one collapsed onto a segment the ray crosses)
 // the search stops, so no ray costs more than about this. A ray that grazes a piece near its
 // silhouette, where two roots lie on either side of the fold of its projection, needs many:
@@ -317,8 +320,8 @@ class Tracer {
       if (node.zmin > limit(found) + marginZ_) continue;
       if (++visited > (mode_ == Mode::All ? kMaxNodesAll : kMaxNodesRender)) return;
       // A leaf at the last level, or once the net is as small as the rounding margin.
-      const bool last =
-          node.depth >= kMaxDepth || top + 2 > kStackSize || node.extent <= 4.0 * marginXY_;
+      const bool last = node.depth >= (mode_ == Mode::All ? kMaxDepthAll : kMaxDepthRender) ||
+                        top + 2 > kStackSize || node.extent <= 4.0 * marginXY_;
       const Slopes sl = slopes(node.net);
       // F at the centre, then the mean value form: F over the node lies in
       // F(c) + [∂F/∂u]·[−1/3, 2/3] + [∂F/∂v]·[−1/3, 2/3]; no root where that excludes 0.
@@ -465,8 +468,10 @@ class Tracer {
              Found& found) const {
     double z;
     bool inside = false;  // a root of this node was recorded
+    bool convergedOutside = false;
     if (newton(root_, residual_, u, v, z)) {
-      if (inNode(node, u, v)) {
+      convergedOutside = !inNode(node, u, v);
+      if (!convergedOutside) {
         record(u, v, z, found);
         inside = true;
         if (injective) return true;  // the node's only root
@@ -478,16 +483,23 @@ class Tracer {
     if (!injective) {
       for (int k = 0; k < 3; ++k) {
         double cu = node.cu[k], cv = node.cv[k];
-        if (newton(root_, residual_, cu, cv, z) && inNode(node, cu, cv)) {
-          record(cu, cv, z, found);
-          inside = true;
+        if (newton(root_, residual_, cu, cv, z)) {
+          if (inNode(node, cu, cv)) {
+            record(cu, cv, z, found);
+            inside = true;
+          } else {
+            convergedOutside = true;
+          }
         }
       }
     }
     if (inside) return true;
+    // Rendering queries keep a root Newton found outside the node for the node that holds it;
+    // all-hits queries (crack rates) cannot risk losing one, so they take the stand-in below.
+    if (convergedOutside && mode_ != Mode::All) return true;
     // Planar stand-in where Newton found no root in the node (it failed, or it went to another
     // root, as near a silhouette where the Jacobian nearly vanishes and two roots lie close): the
-    // corners of the net lie on the surface, and the node is 1/32768 of the piece.
+    // corners of the net lie on the surface, and the node is 1/1024 of the piece or less.
     double l0, l1, l2;
     if (!planarCoordinates(node, l0, l1, l2) || l0 < 0.0 || l1 < 0.0 || l2 < 0.0) return true;
     u = l0 * node.cu[0] + l1 * node.cu[1] + l2 * node.cu[2];
@@ -495,6 +507,12 @@ class Tracer {
     const P3& A = node.net[size_t(BezierTriangle::index(0, 0))];
     const P3& B = node.net[size_t(BezierTriangle::index(4, 0))];
     const P3& C = node.net[size_t(BezierTriangle::index(0, 4))];
+    // Newton from the stand-in's point polishes it when it stays in the node.
+    double nu = u, nv = v;
+    if (newton(root_, residual_, nu, nv, z) && inNode(node, nu, nv)) {
+      record(nu, nv, z, found);
+      return true;
+    }
     record(u, v, l0 * A.z + l1 * B.z + l2 * C.z, found);
     return true;
   }

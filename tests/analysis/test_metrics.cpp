@@ -206,9 +206,8 @@ TEST(Metrics, OpenMeshHasNoCrackRateAndLoneTriangleNoEdgeMetrics) {
   const ModelMetrics m = analyzeModel(*model, "triangle", std::nullopt, 0.0);
   EXPECT_FALSE(m.c0Gap || m.c1AngleDeg || m.crackRate || m.truthDistance);
   const nlohmann::ordered_json j = toJson(m);
-  for (const char* key :
-       {"c0_gap", "c1_angle_deg", "c1_angle_smooth_deg", "g1_edge_share", "crack_rate",
-        "truth_distance"})
+  for (const char* key : {"c0_gap", "c1_angle_deg", "c1_angle_smooth_deg", "g1_edge_share",
+                          "crack_rate", "truth_distance"})
     EXPECT_TRUE(j.at(key).is_null()) << key;
 }
 
