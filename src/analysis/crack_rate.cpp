@@ -14,13 +14,6 @@
 namespace quadtri {
 namespace {
 
-Vec3 uniformDirection(Pcg32& rng) {
-  const double z = 1.0 - 2.0 * rng.nextDouble();
-  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-  const double phi = 2.0 * kPi * rng.nextDouble();
-  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
-}
-
 // Exact crossing parity of a line with a triangle mesh, given Embree's hits as candidates.
 class TriangleCrossings {
  public:

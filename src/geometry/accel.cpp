@@ -96,16 +96,19 @@ void collectTriangleHit(const RTCFilterFunctionNArguments* args) {
   args->valid[0] = 0;
 }
 
+// Embree's float box holding b grown by `margin`.
+void writeBounds(const Bounds3& b, double margin, RTCBounds* o) {
+  o->lower_x = roundDown(b.lo.x() - margin);
+  o->lower_y = roundDown(b.lo.y() - margin);
+  o->lower_z = roundDown(b.lo.z() - margin);
+  o->upper_x = roundUp(b.hi.x() + margin);
+  o->upper_y = roundUp(b.hi.y() + margin);
+  o->upper_z = roundUp(b.hi.z() + margin);
+}
+
 void patchBounds(const RTCBoundsFunctionArguments* args) {
   const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
-  const Bounds3& b = (*g->patches)[args->primID].bounds;
-  RTCBounds* o = args->bounds_o;
-  o->lower_x = roundDown(b.lo.x() - g->margin);
-  o->lower_y = roundDown(b.lo.y() - g->margin);
-  o->lower_z = roundDown(b.lo.z() - g->margin);
-  o->upper_x = roundUp(b.hi.x() + g->margin);
-  o->upper_y = roundUp(b.hi.y() + g->margin);
-  o->upper_z = roundUp(b.hi.z() + g->margin);
+  writeBounds((*g->patches)[args->primID].bounds, g->margin, args->bounds_o);
 }
 
 // Accel traces single rays (rtcIntersect1/rtcOccluded1), so every callback sees N == 1.
@@ -168,14 +171,7 @@ RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geome
 
 void bezierBounds(const RTCBoundsFunctionArguments* args) {
   const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
-  const Bounds3& b = (*g->pieces)[args->primID].bounds;
-  RTCBounds* o = args->bounds_o;
-  o->lower_x = roundDown(b.lo.x() - g->margin);
-  o->lower_y = roundDown(b.lo.y() - g->margin);
-  o->lower_z = roundDown(b.lo.z() - g->margin);
-  o->upper_x = roundUp(b.hi.x() + g->margin);
-  o->upper_y = roundUp(b.hi.y() + g->margin);
-  o->upper_z = roundUp(b.hi.z() + g->margin);
+  writeBounds((*g->pieces)[args->primID].bounds, g->margin, args->bounds_o);
 }
 
 void intersectBezier(const RTCIntersectFunctionNArguments* args) {
@@ -272,6 +268,24 @@ struct Accel::Impl {
       fail("{}: {}", what, message);
     }
   }
+  // One Embree user geometry of `count` primitives with these callbacks, attached to the scene;
+  // `what` names the step in an error.
+  uint32_t attachUserGeometry(size_t count, void* user, RTCBoundsFunction bounds,
+                              RTCIntersectFunctionN intersect, RTCOccludedFunctionN occluded,
+                              const char* what) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    check("creating a user geometry");
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(count));
+    rtcSetGeometryUserData(geom, user);
+    rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, intersect);
+    rtcSetGeometryOccludedFunction(geom, occluded);
+    rtcCommitGeometry(geom);
+    const uint32_t id = rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    check(what);
+    return id;
+  }
   void requireCommitted(const char* what) const {
     if (!committed) fail("{}: the acceleration structure has not been committed", what);
   }
@@ -345,17 +359,9 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
   auto user = std::make_unique<PatchGeometry>();
   user->patches = &patches;
   user->margin = 1e-5 * extent;
-  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
-  impl_->check("creating a user geometry");
-  rtcSetGeometryUserPrimitiveCount(geom, unsigned(patches.size()));
-  rtcSetGeometryUserData(geom, user.get());
-  rtcSetGeometryBoundsFunction(geom, &patchBounds, nullptr);
-  rtcSetGeometryIntersectFunction(geom, &intersectPatch);
-  rtcSetGeometryOccludedFunction(geom, &occludedPatch);
-  rtcCommitGeometry(geom);
-  const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
-  rtcReleaseGeometry(geom);
-  impl_->check("attaching the quadric patches");
+  const uint32_t id =
+      impl_->attachUserGeometry(patches.size(), user.get(), &patchBounds, &intersectPatch,
+                                &occludedPatch, "attaching the quadric patches");
   impl_->patchGeometries.push_back(std::move(user));
   impl_->bytes += patches.size() * sizeof(QuadricPatch);
   return id;
@@ -378,17 +384,9 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
   auto user = std::make_unique<BezierGeometry>();
   user->pieces = &pieces;
   user->margin = 1e-5 * extent;
-  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
-  impl_->check("creating a user geometry");
-  rtcSetGeometryUserPrimitiveCount(geom, unsigned(pieces.size()));
-  rtcSetGeometryUserData(geom, user.get());
-  rtcSetGeometryBoundsFunction(geom, &bezierBounds, nullptr);
-  rtcSetGeometryIntersectFunction(geom, &intersectBezier);
-  rtcSetGeometryOccludedFunction(geom, &occludedBezier);
-  rtcCommitGeometry(geom);
-  const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
-  rtcReleaseGeometry(geom);
-  impl_->check("attaching the Bézier pieces");
+  const uint32_t id =
+      impl_->attachUserGeometry(pieces.size(), user.get(), &bezierBounds, &intersectBezier,
+                                &occludedBezier, "attaching the Bézier pieces");
   impl_->bezierGeometries.push_back(std::move(user));
   impl_->bytes += pieces.size() * sizeof(BezierTriangle);
   return id;

@@ -12,12 +12,6 @@
 namespace quadtri {
 namespace {
 
-Vec3 uniformDirection(Pcg32& rng) {
-  const double z = 1.0 - 2.0 * rng.nextDouble(), phi = 2.0 * kPi * rng.nextDouble();
-  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
-}
-
 TriangleMesh icosphere(int level) {
   ShapeParams p;
   p.level = level;

@@ -21,12 +21,6 @@ Vec2 domainPoint(Pcg32& rng) {
   return Vec2(u, v);
 }
 
-Vec3 uniformDirection(Pcg32& rng) {
-  const double z = 1.0 - 2.0 * rng.nextDouble(), phi = 2.0 * kPi * rng.nextDouble();
-  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
-}
-
 // A direction within `degrees` of −z.
 Vec3 downward(Pcg32& rng, double degrees) {
   const double c = std::cos(degrees * kPi / 180.0);

@@ -39,4 +39,13 @@ class Pcg32 {
   uint64_t state_ = 0, inc_ = 0;
 };
 
+/// A direction uniform on the unit sphere from two of rng's doubles (z, then the azimuth): the
+/// crack-rate lines' directions (analysis/crack_rate.cpp), so tools that redraw those lines
+/// must use it.
+inline Vec3 uniformDirection(Pcg32& rng) {
+  const double z = 1.0 - 2.0 * rng.nextDouble(), phi = 2.0 * kPi * rng.nextDouble();
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
 }  // namespace quadtri
