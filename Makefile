@@ -20,15 +20,21 @@ demo: build
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# One clang build serves both: every layer with ASan, UBSan and libFuzzer's coverage
+# (-DQUADTRI_FUZZ=ON), the unit tests linked without libFuzzer, the fuzz_NAME harnesses with it.
+# -O1 and line tables only: about half the build time of -O2 -g, the same reports.
+SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DQUADTRI_FUZZ=ON -DQUADTRI_BENCH=OFF
 sanitize: setup
-	@cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQUADTRI_SANITIZE=ON -DQUADTRI_BENCH=OFF >/dev/null
+	@CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja $(SANITIZE_FLAGS) >/dev/null
 	@cmake --build build-asan -j $(JOBS)
 	@cd build-asan && ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer harnesses (README "Reliability"), each run for FUZZ_SECONDS.
+# libFuzzer harnesses (README "Reliability"), each run for FUZZ_SECONDS, JOBS at a time, in the
+# sanitizer build (built by `make sanitize` or here).
 FUZZ_SECONDS ?= 60
 fuzz: setup
-	@JOBS=$(JOBS) ./scripts/fuzz.sh $(FUZZ_SECONDS)
+	@CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja $(SANITIZE_FLAGS) >/dev/null
+	@FUZZ_BUILD=build-asan JOBS=$(JOBS) ./scripts/fuzz.sh $(FUZZ_SECONDS)
 
 # ThreadSanitizer (clang): the tests that run threads (tile scheduler, progress bar, adaptive
 # sampler, parallel conversion, studies). TSAN_TESTS is a ctest -R pattern.
@@ -42,4 +48,4 @@ format-check:
 	@clang-format --dry-run --Werror $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD) build-asan build-fuzz build-tsan out
+	rm -rf $(BUILD) build-asan build-tsan out

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses (clang, -DQUADTRI_FUZZ=ON, ASan + UBSan) in build-fuzz/ and
-# runs each for SECONDS (default 60), seeded with tests/fuzz-regressions/NAME/, the project's
-# scenes and meshes, and Debian's assimp-testmodels where installed. New corpus entries go to
-# build-fuzz/corpus/NAME/ (not tracked); a crash, leak or timeout stops the run, leaves its input
-# as build-fuzz/artifacts/NAME/crash-* (leak-*, timeout-*) and makes the script fail. Copy such
-# an input into tests/fuzz-regressions/NAME/ once the bug is fixed: ctest replays it.
+# Runs the libFuzzer harnesses for SECONDS each (default 60), JOBS at a time (default: the
+# cores), seeded with tests/fuzz-regressions/NAME/, the project's scenes and meshes, and
+# Debian's assimp-testmodels where installed. The harnesses are built in FUZZ_BUILD (default
+# build-asan, the sanitizer build of `make sanitize`: clang, -DQUADTRI_FUZZ=ON, ASan + UBSan),
+# which is configured here only when it is not a fuzz build yet. New corpus entries go to
+# FUZZ_BUILD/corpus/NAME/ (not tracked); a crash, leak or timeout stops that harness, leaves its
+# input as FUZZ_BUILD/artifacts/NAME/crash-* (leak-*, timeout-*) and makes the script fail.
+# Copy such an input into tests/fuzz-regressions/NAME/ once the bug is fixed: ctest replays it.
 #
 #   scripts/fuzz.sh [SECONDS] [NAME...]      NAME: obj ply off stl scene_xml shape_spec cli_text
 #                                            render_state (default: all)
@@ -16,10 +18,13 @@ names=("$@")
 if [ ${#names[@]} -eq 0 ]; then
   names=(obj ply off stl scene_xml shape_spec cli_text render_state)
 fi
-build=${FUZZ_BUILD:-build-fuzz}
+build=${FUZZ_BUILD:-build-asan}
 jobs=${JOBS:-$(nproc)}
-CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DQUADTRI_FUZZ=ON -DQUADTRI_BENCH=OFF -DQUADTRI_PYTHON=OFF -DBUILD_TESTING=OFF >/dev/null
+if ! grep -qs '^QUADTRI_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
+  CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
+    -DQUADTRI_FUZZ=ON -DQUADTRI_BENCH=OFF >/dev/null
+fi
 cmake --build "$build" -j "$jobs" --target "${names[@]/#/fuzz_}"
 
 assimp=/usr/share/assimp/models
@@ -34,20 +39,40 @@ seeds() {  # extra seed folders for a harness
 }
 # Assimp's own leaks on malformed files (fuzz/lsan.supp says which and why).
 export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
-status=0
-for name in "${names[@]}"; do
-  corpus="$build/corpus/$name" artifacts="$build/artifacts/$name"
+run() {  # one harness; its log holds libFuzzer's final statistics
+  local name=$1 corpus="$build/corpus/$1" artifacts="$build/artifacts/$1" extra=()
   mkdir -p "$corpus" "$artifacts"
-  extra=()
   for d in $(seeds "$name"); do [ -d "$d" ] && extra+=("$d"); done
-  echo "== fuzz_$name for ${seconds}s"
   # -rss_limit_mb: a harness may use what --max-memory allows it (256 MiB) and ASan's overhead.
-  if ! "$build/fuzz/fuzz_$name" "$corpus" "tests/fuzz-regressions/$name" "${extra[@]}" \
-      -max_total_time="$seconds" -timeout=20 -rss_limit_mb=3072 -max_len=65536 \
-      -print_final_stats=1 -artifact_prefix="$artifacts/" 2>"$build/fuzz-$name.log"; then
-    echo "fuzz_$name FAILED: see $build/fuzz-$name.log and $artifacts/" >&2
+  "$build/fuzz/fuzz_$name" "$corpus" "tests/fuzz-regressions/$name" "${extra[@]}" \
+    -max_total_time="$seconds" -timeout=20 -rss_limit_mb=3072 -max_len=65536 \
+    -print_final_stats=1 -artifact_prefix="$artifacts/" >"$build/fuzz-$name.log" 2>&1
+}
+echo "== ${#names[@]} harnesses for ${seconds}s each, $jobs at a time"
+declare -A pids
+status=0
+report() {  # waits for one harness and prints its result
+  local name=$1
+  if wait "${pids[$name]}"; then
+    echo "fuzz_$name: $(grep -E '^stat::number_of_executed_units' "$build/fuzz-$name.log" |
+      awk '{print $2}') executions, peak $(grep -E '^stat::peak_rss_mb' "$build/fuzz-$name.log" |
+      awk '{print $2}') MiB, nothing found"
+  else
+    echo "fuzz_$name FAILED: see $build/fuzz-$name.log and $build/artifacts/$name/" >&2
+    grep -E "^==[0-9]+==ERROR|SUMMARY|^artifact_prefix|Test unit written" \
+      "$build/fuzz-$name.log" >&2 || true
     status=1
   fi
-  grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb" "$build/fuzz-$name.log" || true
+}
+running=()
+for name in "${names[@]}"; do
+  run "$name" &
+  pids[$name]=$!
+  running+=("$name")
+  if [ ${#running[@]} -ge "$jobs" ]; then
+    report "${running[0]}"
+    running=("${running[@]:1}")
+  fi
 done
+for name in "${running[@]}"; do report "$name"; done
 exit $status

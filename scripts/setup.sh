@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev libeigen3-dev libassimp-dev libopenimageio-dev libpugixml-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
-  clang-format fonts-dejavu-core python3 assimp-testmodels parallel
+  clang-format clang libclang-rt-14-dev fonts-dejavu-core python3 assimp-testmodels parallel
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-openimageio
 )
 missing=()

@@ -168,6 +168,21 @@ double truthDistance(const SurfaceModel& model, const AnalyticSurface& truth, in
   });
 }
 
+std::string crackRateUndefinedReason(const MeshTopology& topology) {
+  std::vector<std::string> why;
+  if (const size_t n = topology.nonManifoldEdgeCount())
+    why.push_back(fmt::format(
+        "{} edge{} three or more triangles: a line crossing one meets more than two sheets "
+        "there, so the parity of its crossings no longer tells inside from outside",
+        n, n == 1 ? " has" : "s have"));
+  if (const size_t n = topology.boundaryEdgeCount())
+    why.push_back(fmt::format(
+        "{} boundary edge{}: the mesh is open, so it bounds no volume whose crossings a line "
+        "could count",
+        n, n == 1 ? "" : "s"));
+  return fmt::format("{}", fmt::join(why, "; "));
+}
+
 ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName,
                           const std::optional<AnalyticSurface>& truth, double convertSeconds,
                           const AnalysisOptions& options) {
@@ -195,7 +210,10 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
     m.c1AngleSmoothDeg = c->c1AngleSmoothDeg;
     m.g1EdgeShare = c->g1EdgeShare;
   }
-  if (topology.isClosed()) m.crackRate = crackRate(geometry, options.crack);
+  if (topology.isClosed())
+    m.crackRate = crackRate(geometry, options.crack);
+  else
+    m.crackRateUndefined = crackRateUndefinedReason(topology);
   if (truth) m.truthDistance = truthDistance(model, *truth, options.truthLevel);
   return m;
 }
@@ -243,6 +261,10 @@ const std::vector<MetricKey>& keyTable() {
       {"g1_edge_share", true, [](const ModelMetrics& m) { return nullable(m.g1EdgeShare); }},
       {"crack_rate", true, [](const ModelMetrics& m) { return nullable(m.crackRate); }},
       {"truth_distance", true, [](const ModelMetrics& m) { return nullable(m.truthDistance); }},
+      {"crack_rate_undefined", false,
+       [](const ModelMetrics& m) {
+         return m.crackRateUndefined.empty() ? Json(nullptr) : Json(m.crackRateUndefined);
+       }},
   };
   return keys;
 }
@@ -330,6 +352,8 @@ std::string metricsTable(const std::vector<ModelMetrics>& rows) {
     }
     out += '\n';
   }
+  if (!rows.empty() && !rows.front().crackRateUndefined.empty())
+    out += fmt::format("crack_rate: not defined: {}\n", rows.front().crackRateUndefined);
   return out;
 }
 

@@ -70,6 +70,8 @@ Action addAnalyzeCommand(CLI::App& app) {
                      modelBytesPerTriangle(name, Tessellation::thesis(), ModelUse::ConvertMesh));
     }
     BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
+    if (const std::optional<std::string> repaired = repairWarning(input.mesh, opt->mesh))
+      fmt::print(stderr, "warning: {}\n", *repaired);
     const auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     std::vector<ModelMetrics> rows;
     for (const std::string& name : names) {

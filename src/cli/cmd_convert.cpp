@@ -50,6 +50,8 @@ Action addConvertCommand(CLI::App& app) {
         std::filesystem::path(opt->output).extension() == ".json" ? ModelUse::ConvertJson
                                                                   : ModelUse::ConvertMesh);
     BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
+    if (const std::optional<std::string> repaired = repairWarning(input.mesh, opt->mesh))
+      fmt::print(stderr, "warning: {}\n", *repaired);
     auto mesh = std::make_shared<const TriangleMesh>(std::move(input.mesh));
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<SurfaceModel> model = makeModel(opt->model, mesh);

@@ -111,12 +111,16 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
           if (i == ~0u) {
             mesh.normals.push_back(mesh.faceNormal(mesh.triangles.size() - 1));
             i = uint32_t(mesh.normals.size() - 1);
+            ++mesh.repairs.replacedNormals;
           }
         mesh.normalIndices.push_back(ni);
       }
     }
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
+  repairMesh(mesh);
+  if (mesh.triangles.empty())
+    fail("{}: every triangle names a vertex twice; no surface is left", name);
   applyNormals(mesh, normals);
   mesh.validate(name);
   return mesh;

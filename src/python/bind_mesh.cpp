@@ -140,6 +140,8 @@ Surface(kind, a=1, b=1, c=1): kind "sphere" (radius a), "ellipsoid" (semi-axes a
           checkCreaseAngle(creaseAngle);
           input = loadMeshSpec(spec, NormalOptions(source, creaseAngle));
         }
+        if (const std::optional<std::string> repaired = repairWarning(input.mesh, spec))
+          warn(PyExc_UserWarning, *repaired);
         py::tuple arrays = meshArrays(input.mesh, split, spec);
         return truth ? withTruth(arrays, input.truth) : arrays;
       },

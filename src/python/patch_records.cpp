@@ -49,8 +49,11 @@ struct Node {
   std::vector<int64_t> dims;  // list dimensions, empty for a scalar
   bool unknownInner = false;  // only empty lists seen: the dimensions after the first unknown
   bool variable = false;      // the first dimension differs between records
-  std::vector<std::pair<std::string, Node>> children;  // Kind::Object
-  size_t offset = 0, countOffset = 0;                  // set by layout()
+  // Kind::Object: childNames[i] names children[i] (a vector of the incomplete Node is allowed,
+  // a pair holding one is not).
+  std::vector<std::string> childNames;
+  std::vector<Node> children;
+  size_t offset = 0, countOffset = 0;  // set by layout()
 };
 
 Node::Kind numberKind(const nlohmann::json& v) {
@@ -96,15 +99,16 @@ void merge(Node& into, const nlohmann::json& v, const std::string& key);
 void mergeObject(Node& into, const nlohmann::json& object) {
   into.kind = Node::Kind::Object;
   into.present = true;
-  for (const auto& [k, item] : object.items()) {
-    if (item.is_string()) continue;
-    auto it = std::find_if(into.children.begin(), into.children.end(),
-                           [&](const auto& c) { return c.first == k; });
-    if (it == into.children.end()) {
-      into.children.emplace_back(k, Node{});
-      it = into.children.end() - 1;
+  for (const auto& entry : object.items()) {
+    const std::string& k = entry.key();
+    if (entry.value().is_string()) continue;
+    const auto it = std::find(into.childNames.begin(), into.childNames.end(), k);
+    const size_t i = size_t(it - into.childNames.begin());
+    if (it == into.childNames.end()) {
+      into.childNames.push_back(k);
+      into.children.emplace_back();
     }
-    merge(it->second, item, k);
+    merge(into.children[i], entry.value(), k);
   }
 }
 
@@ -144,7 +148,8 @@ size_t layout(Node& node, const std::string& key, size_t offset) {
   node.offset = offset;
   if (node.kind == Node::Kind::Object) {
     size_t at = offset;
-    for (auto& [k, child] : node.children) at = layout(child, k, at);
+    for (size_t i = 0; i < node.children.size(); ++i)
+      at = layout(node.children[i], node.childNames[i], at);
     return at;
   }
   if (key == "planes" && !node.dims.empty()) {
@@ -167,7 +172,9 @@ size_t layout(Node& node, const std::string& key, size_t offset) {
 
 py::object dtypeOf(const Node& node) {
   py::list fields;
-  for (const auto& [key, child] : node.children) {
+  for (size_t i = 0; i < node.children.size(); ++i) {
+    const std::string& key = node.childNames[i];
+    const Node& child = node.children[i];
     if (child.kind == Node::Kind::Object) {
       fields.append(py::make_tuple(key, dtypeOf(child)));
       continue;
@@ -179,7 +186,7 @@ py::object dtypeOf(const Node& node) {
       fields.append(py::make_tuple(key, type));
     } else {
       py::tuple shape(child.dims.size());
-      for (size_t i = 0; i < child.dims.size(); ++i) shape[i] = py::int_(child.dims[i]);
+      for (size_t d = 0; d < child.dims.size(); ++d) shape[d] = py::int_(child.dims[d]);
       fields.append(py::make_tuple(key, type, shape));
     }
     if (child.variable) fields.append(py::make_tuple(key + "_count", "<i8"));
@@ -214,7 +221,9 @@ void writeList(const Node& node, const nlohmann::json& v, size_t level, char* at
 
 void fill(const Node& node, const nlohmann::json* v, char* base) {
   if (node.kind == Node::Kind::Object) {
-    for (const auto& [key, child] : node.children) {
+    for (size_t i = 0; i < node.children.size(); ++i) {
+      const std::string& key = node.childNames[i];
+      const Node& child = node.children[i];
       const nlohmann::json* item = nullptr;
       if (v && v->is_object()) {
         auto it = v->find(key);

@@ -190,7 +190,12 @@ BuiltScene buildScene(const SceneDescription& description,
         mesh.normals.clear();
         mesh.normalIndices.clear();
       }
-      if (isFile) built.inputTriangles += mesh.triangleCount();
+      if (isFile) {
+        built.inputTriangles += mesh.triangleCount();
+        if (std::optional<std::string> repaired =
+                repairWarning(mesh, fmt::format("{} {}", s.location, s.filename.string())))
+          built.warnings.push_back(std::move(*repaired));
+      }
       transformMesh(mesh, s.toWorld, s.flipNormals);
       std::shared_ptr<const SurfaceModel> converted =
           makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));

@@ -146,3 +146,14 @@ def test_surface_kinds():
     assert "sphere" in repr(s)
     with pytest.raises(ValueError, match="kind 'cube'"):
         quadtri.Surface("cube")
+
+
+def test_load_mesh_reports_repairs_naming_the_file(tmp_path):
+    # Two squares' worth of triangles, one duplicated and one naming a vertex twice.
+    path = tmp_path / "damaged.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                    "f 1 2 3\nf 1 3 4\nf 3 2 1\nf 1 1 2\n")
+    with pytest.warns(UserWarning, match=r"damaged\.obj: removed 1 triangle naming a vertex "
+                                         r"twice and 1 duplicate triangle"):
+        V, F, N = quadtri.load_mesh(path)
+    assert F.shape == (2, 3)

@@ -80,7 +80,13 @@ struct ModelMetrics {
   /// Share of patches that fell back (SurfaceModel::fellBack).
   double fallbackRate = 0;
   std::optional<double> c0Gap, c1AngleDeg, c1AngleSmoothDeg, g1EdgeShare, crackRate, truthDistance;
+  /// Why crackRate is not defined (the mesh is open or non-manifold); empty when it is.
+  std::string crackRateUndefined;
 };
+
+/// Why crack_rate is not defined on a mesh that is not closed: its non-manifold and its
+/// boundary edges, counted, each with the reason.
+std::string crackRateUndefinedReason(const MeshTopology& topology);
 
 struct AnalysisOptions {
   Tessellation tessellation;

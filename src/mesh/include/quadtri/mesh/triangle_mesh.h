@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "quadtri/math/vec.h"
+#include "quadtri/mesh/mesh_repair.h"
 
 namespace quadtri {
 
@@ -20,6 +21,8 @@ struct TriangleMesh {
   std::vector<Tri> triangles;
   std::vector<Vec3> normals;       ///< unit shading normals, shared by corners that index them
   std::vector<Tri> normalIndices;  ///< one per triangle; empty means "no shading normals"
+  /// What the loader repaired or found (mesh_repair.h); all zero for a built mesh.
+  MeshRepairs repairs;
 
   size_t triangleCount() const { return triangles.size(); }
   bool hasNormals() const { return !normalIndices.empty(); }
