@@ -37,11 +37,12 @@ fuzz: setup
 	@FUZZ_BUILD=build-asan JOBS=$(JOBS) ./scripts/fuzz.sh $(FUZZ_SECONDS)
 
 # ThreadSanitizer (clang): the tests that run threads (tile scheduler, progress bar, adaptive
-# sampler, parallel conversion, studies). TSAN_TESTS is a ctest -R pattern.
-TSAN_TESTS ?= ^(Renderer|SceneRenderTest|RenderScene|Study|ConvertOutput|StopSignals|AtomicFile|CrackRate|Metrics|Convergence|RenderCheckpoint|RenderSignals)\.
+# sampler, parallel conversion, studies, the soak's random scenes). TSAN_TESTS is a ctest -R
+# pattern.
+TSAN_TESTS ?= ^(Renderer|SceneRenderTest|RenderScene|Study|ConvertOutput|StopSignals|AtomicFile|CrackRate|Metrics|Convergence|RenderCheckpoint|RenderSignals|ParallelConversion|soak)\.
 tsan: setup
-	@CC=clang CXX=clang++ cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQUADTRI_TSAN=ON -DQUADTRI_BENCH=OFF -DQUADTRI_PYTHON=OFF >/dev/null
-	@cmake --build build-tsan -j $(JOBS) --target quadtri_tests quadtri
+	@CC=clang CXX=clang++ cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DQUADTRI_TSAN=ON -DQUADTRI_BENCH=OFF -DQUADTRI_PYTHON=OFF >/dev/null
+	@cmake --build build-tsan -j $(JOBS) --target quadtri_tests quadtri quadtri_soak
 	@cd build-tsan && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/scripts/tsan.supp" ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
 
 format-check:

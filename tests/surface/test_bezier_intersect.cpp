@@ -186,6 +186,7 @@ TEST(BezierIntersect, TwoHitsOnACurvedPiece) {
 TEST(BezierIntersect, CurvedQuarticReintersection) {
   Pcg32 rng(17);
   std::vector<BezierHit> all;
+  int grazing = 0;
   for (int p = 0; p < 40; ++p) {
     BezierTriangle piece = bumpyPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 0.4, rng);
     for (Vec3& b : piece.b) b.head<2>() += 0.1 * Vec2(rng.nextDouble(), rng.nextDouble());
@@ -201,7 +202,20 @@ TEST(BezierIntersect, CurvedQuarticReintersection) {
       const auto match = std::find_if(all.begin(), all.end(), [&](const BezierHit& h) {
         return std::abs(h.u - uv.x()) < 1e-9 && std::abs(h.v - uv.y()) < 1e-9;
       });
-      ASSERT_NE(match, all.end()) << p << " " << i;
+      // A ray (nearly) tangent to the surface where it aims meets it in a double or triple
+      // root, which no tracer resolves better than the square or cube root of the rounding
+      // error (1e-5 in t for a triple root): the check below is for rays at least 1° off the
+      // tangent plane.
+      if (std::abs(d.dot(piece.normal(uv.x(), uv.y()))) < std::sin(M_PI / 180.0)) {
+        ++grazing;
+        continue;
+      }
+      ASSERT_NE(match, all.end()) << p << " " << i << ": aimed at (" << uv.x() << ", " << uv.y()
+                                  << ") t " << distance << ", " << all.size() << " hits"
+                                  << (all.empty() ? "" : ", first at (")
+                                  << (all.empty() ? 0.0 : all[0].u) << ", "
+                                  << (all.empty() ? 0.0 : all[0].v) << ") t "
+                                  << (all.empty() ? 0.0 : all[0].t);
       EXPECT_NEAR(match->t, distance, 1e-9 * distance);
       for (const BezierHit& h : all)
         EXPECT_NEAR((piece.position(h.u, h.v) - (origin + h.t * d)).norm(), 0.0, 1e-9);
@@ -210,6 +224,8 @@ TEST(BezierIntersect, CurvedQuarticReintersection) {
       EXPECT_LE(hit.t, distance * (1 + 1e-9));
     }
   }
+  // Uniform directions lie within 1° of a plane with probability sin 1° = 1.75%.
+  EXPECT_LT(grazing, 40 * 500 * 25 / 1000);
 }
 
 // 4 sub-triangles of a curved height field meeting exactly: rays aimed anywhere in the union,

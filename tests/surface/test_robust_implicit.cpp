@@ -45,7 +45,10 @@ TEST(RobustImplicitModel, IcospheresConvertToExactlyTheirSphere) {
       for (const QuadricPatch& p : model.quadricPatches())
         worst = std::max(worst, proportionalityError(p.q, truth));
     }
-  EXPECT_LT(worst, 1e-9);
+  // Exact up to rounding: each patch is a least-squares fit whose rounding is amplified by the
+  // sphere's offset (up to 10 radii, so the constant term |c|² − r² is up to 100 times the
+  // quadratic ones). Measured 4.6e-9 under clang -O1 with ASan, less under gcc -O3.
+  EXPECT_LT(worst, 1e-8);
 }
 
 // A grid of (n+1)² vertices over [-1,1]² on z = x² − y², with the saddle's normals.
