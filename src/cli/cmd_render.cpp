@@ -118,7 +118,8 @@ Action addRenderCommand(CLI::App& app) {
 
     // Checkpoints and resuming: a state is only resumed by the render that saved it.
     const std::optional<std::string>& modelOverride = settings.model;
-    const uint64_t key = renderKey(description, options, modelOverride);
+    const RenderKeys keys = renderKeys(description, options, modelOverride);
+    const uint64_t key = keys.render;
     std::optional<RenderState> resumed;
     if (!opt->resume.empty()) {
       resumed = loadRenderState(opt->resume);
@@ -172,8 +173,7 @@ Action addRenderCommand(CLI::App& app) {
     frame.filmWidth = camera.filmWidth();
     frame.filmHeight = camera.filmHeight();
     frame.attributes = {
-        {tile_attribute::kSceneKey,
-         fmt::format("{:016x}", filmRenderKey(description, options, modelOverride))},
+        {tile_attribute::kSceneKey, fmt::format("{:016x}", keys.film)},
         {tile_attribute::kScene, std::filesystem::path(opt->scene).filename().string()},
         {tile_attribute::kSeed, std::to_string(options.seed)},
         {tile_attribute::kSamples, std::to_string(options.samplesPerPixel)},

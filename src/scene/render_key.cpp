@@ -13,11 +13,23 @@
 namespace quadtri {
 namespace {
 
-class Fnv1a final : public KeyWriter {
+/// 64-bit FNV-1a.
+struct Fnv1a {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  void bytes(const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) hash = (hash ^ p[i]) * 0x100000001b3ULL;
+  }
+};
+
+/// The key of the render (its crop window) and of the whole film at once: the same bytes go
+/// into both hashes but the crop window's, so the scene file and every mesh file are read
+/// once for both.
+class KeyPair final : public KeyWriter {
  public:
   void bytes(const void* data, size_t n) override {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ULL;
+    render_.bytes(data, n);
+    film_.bytes(data, n);
   }
   template <typename T>
   void add(const T& v) {
@@ -44,17 +56,22 @@ class Fnv1a final : public KeyWriter {
     }
     add(total);
   }
-  uint64_t hash() const { return hash_; }
+  /// A value that differs between the two: the render's crop field and the whole film's.
+  void addEach(int renderValue, int filmValue) {
+    render_.bytes(&renderValue, sizeof(renderValue));
+    film_.bytes(&filmValue, sizeof(filmValue));
+  }
+  RenderKeys keys() const { return {render_.hash, film_.hash}; }
 
  private:
-  uint64_t hash_ = 0xcbf29ce484222325ULL;
+  Fnv1a render_, film_;
 };
 
 }  // namespace
 
-uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
-                   const std::optional<std::string>& modelOverride) {
-  Fnv1a h;
+RenderKeys renderKeys(const SceneDescription& d, const RenderOptions& options,
+                      const std::optional<std::string>& modelOverride) {
+  KeyPair h;
   h.add(std::string("quadtri " QUADTRI_VERSION " render state"));
   h.file(d.file);
   const SensorDesc& s = d.sensor;
@@ -68,10 +85,11 @@ uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
   h.add(s.film.filter.type);
   h.add(s.film.filter.stddev);
   h.add(s.film.filter.radius);
-  h.add(s.film.cropX);
-  h.add(s.film.cropY);
-  h.add(s.film.cropWidth);
-  h.add(s.film.cropHeight);
+  // filmRenderKey: the crop window reset to the whole film.
+  h.addEach(s.film.cropX, 0);
+  h.addEach(s.film.cropY, 0);
+  h.addEach(s.film.cropWidth, s.film.width);
+  h.addEach(s.film.cropHeight, s.film.height);
   h.addMatrix(s.principalPointOffset);
   h.add(s.sampler.sampleCount);
   h.add(s.sampler.seed);
@@ -102,7 +120,12 @@ uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
   h.add(options.filter.kind);
   h.add(options.filter.stddev);
   h.add(options.filter.tentRadius);
-  return h.hash();
+  return h.keys();
+}
+
+uint64_t renderKey(const SceneDescription& description, const RenderOptions& options,
+                   const std::optional<std::string>& modelOverride) {
+  return renderKeys(description, options, modelOverride).render;
 }
 
 void checkResumable(const RenderState& state, uint64_t key, int width, int height,
@@ -118,13 +141,9 @@ void checkResumable(const RenderState& state, uint64_t key, int width, int heigh
         path, state.key, key);
 }
 
-uint64_t filmRenderKey(SceneDescription description, const RenderOptions& options,
+uint64_t filmRenderKey(const SceneDescription& description, const RenderOptions& options,
                        const std::optional<std::string>& modelOverride) {
-  FilmDesc& film = description.sensor.film;
-  film.cropX = film.cropY = 0;
-  film.cropWidth = film.width;
-  film.cropHeight = film.height;
-  return renderKey(description, options, modelOverride);
+  return renderKeys(description, options, modelOverride).film;
 }
 
 }  // namespace quadtri
