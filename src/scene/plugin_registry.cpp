@@ -2,6 +2,7 @@
 // one line here (and its files in the CMake list); docs/DESIGN.md §5.1 walks through one.
 #include <algorithm>
 
+#include "quadtri/scene/bsdf/blend_xml.h"
 #include "quadtri/scene/bsdf/conductor_xml.h"
 #include "quadtri/scene/bsdf/dielectric_xml.h"
 #include "quadtri/scene/bsdf/diffuse_xml.h"
@@ -24,7 +25,7 @@ const std::vector<BsdfPlugin>& bsdfPlugins() {
   static const std::vector<BsdfPlugin> table = {
       {"diffuse", parseDiffuseBsdf},     {"dielectric", parseDielectricBsdf},
       {"conductor", parseConductorBsdf}, {"roughconductor", parseRoughConductorBsdf},
-      {"twosided", parseTwoSidedBsdf},
+      {"twosided", parseTwoSidedBsdf},   {"blendbsdf", parseBlendBsdf},
   };
   return table;
 }

@@ -10,6 +10,7 @@
 #include "quadtri/math/error.h"
 #include "quadtri/render/bsdf/bsdf.h"
 #include "quadtri/render/integrator/integrator.h"
+#include "quadtri/scene/bsdf/blend_xml.h"
 #include "quadtri/scene/bsdf/diffuse_xml.h"
 #include "quadtri/scene/plugin.h"
 #include "quadtri/scene/scene_builder.h"
@@ -71,7 +72,7 @@ class MeshFolder {
 
 TEST(PluginRegistry, TablesHoldEveryPluginInOrder) {
   EXPECT_EQ(bsdfNames(), (std::vector<std::string>{"diffuse", "dielectric", "conductor",
-                                                   "roughconductor", "twosided"}));
+                                                   "roughconductor", "twosided", "blendbsdf"}));
   EXPECT_EQ(emitterNames(), (std::vector<std::string>{"point", "constant", "area"}));
   EXPECT_EQ(shapeNames(), (std::vector<std::string>{"obj", "ply", "rectangle", "cube", "sphere"}));
   EXPECT_EQ(integratorNames(), (std::vector<std::string>{"path", "direct", "normals", "adaptive"}));
@@ -94,6 +95,8 @@ TEST(PluginRegistry, EveryBsdfNameRoundTripsAndBuilds) {
       {"conductor", R"(<string name="material" value="Au"/>)"},
       {"roughconductor", R"(<string name="distribution" value="ggx"/>)"},
       {"twosided", R"(<bsdf type="diffuse"/>)"},
+      {"blendbsdf", R"(<float name="weight" value="0.25"/><bsdf type="diffuse"/>
+                       <bsdf type="conductor"/>)"},
   };
   for (const std::string& name : bsdfNames()) {
     ASSERT_TRUE(bodies.count(name)) << "no test body for the registered BSDF " << name;
@@ -212,6 +215,32 @@ TEST(PluginRegistry, UnknownTypesListTheRegisteredNames) {
                            joined(c.names))
         << message;
   }
+}
+
+TEST(PluginRegistry, BlendTakesItsTwoBsdfsInDocumentOrder) {
+  // The plugin added through the registry alone (src/scene/bsdf/blend_xml.*, one table line).
+  const SceneDescription s = parse(std::string(kSensor) + R"(<bsdf type="diffuse" id="d"/>
+    <bsdf type="blendbsdf" id="mix"><float name="weight" value="0.3"/>
+      <bsdf type="conductor"/><ref id="d"/></bsdf>)");
+  ASSERT_EQ(s.bsdfs.size(), 3u);
+  const BlendBsdfParams* blend = s.bsdfs[2].as<BlendBsdfParams>();
+  ASSERT_TRUE(blend);
+  EXPECT_DOUBLE_EQ(blend->weight, 0.3);
+  EXPECT_EQ(blend->blended[0], 1u);  // the nested conductor, stored before the blend
+  EXPECT_EQ(blend->blended[1], 0u);  // the referenced diffuse
+  EXPECT_EQ(s.bsdfs[1].type, "conductor");
+  EXPECT_NE(toString(s.bsdfs[2]).find("weight=0.3 bsdfs=[1, 0]"), std::string::npos);
+
+  const std::string one = errorOf(std::string(kSensor) +
+                                  "\n<bsdf type=\"blendbsdf\"><float name=\"weight\" "
+                                  "value=\"0.5\"/><bsdf type=\"diffuse\"/></bsdf>");
+  EXPECT_EQ(one, "test.xml:5: bsdf 'blendbsdf' needs exactly two nested <bsdf> or <ref>, got 1");
+  const std::string weight = errorOf(std::string(kSensor) +
+                                     "\n<bsdf type=\"blendbsdf\">\n<float name=\"weight\" "
+                                     "value=\"2\"/></bsdf>");
+  EXPECT_EQ(weight, "test.xml:6: bsdf 'blendbsdf': weight must be in [0, 1], got 2");
+  const std::string missing = errorOf(std::string(kSensor) + "\n<bsdf type=\"blendbsdf\"/>");
+  EXPECT_EQ(missing, "test.xml:5: bsdf 'blendbsdf' needs <float name=\"weight\" .../>");
 }
 
 TEST(PluginRegistry, AShapeWithoutBsdfGetsTheDefaultDiffuse) {
