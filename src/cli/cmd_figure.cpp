@@ -3,35 +3,24 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <sstream>
 
 #include "commands.h"
 #include "normal_flags.h"
 #include "quadtri/io/atomic_file.h"
 #include "quadtri/math/error.h"
 #include "quadtri/report/figure.h"
-#include "quadtri/surface/model.h"
+#include "render_flags.h"
 
 namespace quadtri::cli {
-namespace {
-
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) items.push_back(item);
-  return items;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 Action addFigureCommand(CLI::App& app) {
   struct Options {
     std::string setup = "a", shapes = "triangle,tetrahedron,icosahedron,teapot",
                 models = "shading,quadric-edges,quadric-param,quadric-implicit",
                 scenes = "scenes/thesis", output, csv, ratioPlot;
-    std::vector<std::string> defines;
-    int spp = 0, res = 0, threads = 0, repeats = 1;
+    int res = 0, repeats = 1;
+    RenderFlags flags;
     NormalFlags normals;
   };
   auto opt = std::make_shared<Options>();
@@ -52,10 +41,8 @@ Action addFigureCommand(CLI::App& app) {
   sub->add_option("--ratio-plot", opt->ratioPlot,
                   "PNG plot of the render-time ratio of the last model over each other model "
                   "against its primitive count (thesis fig. 5.5)");
-  sub->add_option("--spp", opt->spp, "Samples per pixel (sets $spp and overrides the sampler)");
   sub->add_option("--res", opt->res, "Image side in pixels (sets $res)");
-  sub->add_option("-D", opt->defines, "Scene parameter name=value (overrides <default>)");
-  sub->add_option("--threads", opt->threads, "Worker threads (0: all)")->capture_default_str();
+  opt->flags.add(sub, kSppFlag | kDefineFlag | kThreadsFlag | kSeedFlag | kTimeFlag);
   addNormalFlags(sub, opt->normals,
                  "Shading normals of every obj/ply shape, overriding the scenes': file, average "
                  "(thesis eq. 2.8) or angle (angle-weighted, split at --crease-angle)",
@@ -70,26 +57,13 @@ Action addFigureCommand(CLI::App& app) {
     request.models = splitList(opt->models);
     if (request.shapes.empty() || request.models.empty())
       fail("--shapes and --models need at least one name each");
-    const std::vector<std::string>& known = modelNames();
-    for (const std::string& m : request.models)
-      if (std::find(known.begin(), known.end(), m) == known.end())
-        fail("--models: '{}' is not a model", m);
-    if (opt->spp < 0 || opt->res < 0 || opt->threads < 0)
-      fail("--spp, --res and --threads expect positive numbers");
+    for (const std::string& m : request.models) checkModelName("--models", m);
+    if (opt->res < 0) fail("--res {}: expected a positive number of pixels", opt->res);
     if (opt->repeats < 1) fail("--repeat {}: expected at least 1", opt->repeats);
     if (std::filesystem::path(opt->output).extension() != ".png")
       fail("-o {}: expected a .png file", opt->output);
-    for (const std::string& d : opt->defines) {
-      const size_t eq = d.find('=');
-      if (eq == std::string::npos || eq == 0) fail("-D {}: expected name=value", d);
-      request.defines[d.substr(0, eq)] = d.substr(eq + 1);
-    }
-    if (opt->spp > 0) {
-      request.defines["spp"] = std::to_string(opt->spp);
-      request.samplesPerPixel = opt->spp;
-    }
-    if (opt->res > 0) request.defines["res"] = std::to_string(opt->res);
-    request.threads = opt->threads;
+    request.settings = opt->flags.settings();
+    if (opt->res > 0) request.settings.defines["res"] = std::to_string(opt->res);
     request.normals = opt->normals.sourceOverride();
     request.creaseAngleDeg = opt->normals.creaseOverride();
     request.repeats = opt->repeats;

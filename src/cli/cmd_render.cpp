@@ -14,7 +14,7 @@
 #include "quadtri/render/tiles.h"
 #include "quadtri/scene/render_key.h"
 #include "quadtri/scene/scene_render.h"
-#include "quadtri/surface/model.h"
+#include "render_flags.h"
 
 namespace quadtri::cli {
 namespace {
@@ -38,11 +38,10 @@ std::string samplesPerPixelReport(const RenderStats& s, size_t pixels) {
 
 Action addRenderCommand(CLI::App& app) {
   struct Options {
-    std::string scene, model;
-    std::vector<std::string> outputs, defines;
-    int spp = 0, threads = 0;
-    double timeLimit = 0.0, checkpoint = 0.0;
-    std::optional<uint64_t> seed;
+    std::string scene;
+    std::vector<std::string> outputs;
+    double checkpoint = 0.0;
+    RenderFlags flags;
     NormalFlags normals;
     std::string resume, crop, tile;
   };
@@ -52,16 +51,7 @@ Action addRenderCommand(CLI::App& app) {
   sub->add_option("scene", opt->scene, "Scene file (.xml)")->required()->check(CLI::ExistingFile);
   sub->add_option("-o,--output", opt->outputs, "Output image, .exr or .png (may be given twice)")
       ->required();
-  sub->add_option("--model", opt->model, "Model for every obj/ply shape, overriding the scene")
-      ->check(CLI::IsMember(modelNames()));
-  sub->add_option("-D", opt->defines, "Scene parameter name=value (overrides <default>)");
-  CLI::Option* sppOption = sub->add_option(
-      "--spp", opt->spp,
-      "Samples per pixel (overrides the sampler; the cap per pixel of an adaptive integrator)");
-  sub->add_option("--threads", opt->threads, "Worker threads (0: all)")->capture_default_str();
-  CLI::Option* timeOption = sub->add_option("--time", opt->timeLimit,
-                                            "Time budget in seconds; unfinished pixels stay black");
-  sub->add_option("--seed", opt->seed, "Sampler seed (overrides the sampler)");
+  opt->flags.add(sub, kModelFlag | kDefineFlag | kSppFlag | kThreadsFlag | kTimeFlag | kSeedFlag);
   addNormalFlags(sub, opt->normals,
                  "Shading normals of every obj/ply shape, overriding the scene's: file (as "
                  "given; angle-weighted and split at --crease-angle when missing), average "
@@ -82,15 +72,9 @@ Action addRenderCommand(CLI::App& app) {
   sub->add_option("--tile", opt->tile,
                   "Render only tile I of N (1 <= I <= N): film rows [(I-1)*H/N, I*H/N), for "
                   "`quadtri merge`");
-  return [opt, sppOption, timeOption, checkpointOption, maxMemory]() {
-    const bool sppGiven = sppOption->count() > 0, timeGiven = timeOption->count() > 0;
+  return [opt, checkpointOption, maxMemory]() {
     const bool checkpointGiven = checkpointOption->count() > 0;
-    SceneDefines defines;
-    for (const std::string& d : opt->defines) {
-      const size_t eq = d.find('=');
-      if (eq == std::string::npos || eq == 0) fail("-D {}: expected name=value", d);
-      defines[d.substr(0, eq)] = d.substr(eq + 1);
-    }
+    const RenderSettings settings = opt->flags.settings();
     for (const std::string& out : opt->outputs) {
       const std::string ext = std::filesystem::path(out).extension().string();
       if (ext != ".exr" && ext != ".png") fail("output {}: expected a .exr or .png file", out);
@@ -107,10 +91,6 @@ Action addRenderCommand(CLI::App& app) {
               "output {}: {} renders a window of the film, written as .exr only (its data "
               "window places it on the film); merge the tiles with `quadtri merge`",
               out, crop ? "--crop" : "--tile");
-    if (sppGiven && opt->spp <= 0) fail("--spp {}: expected a positive count", opt->spp);
-    if (opt->threads < 0) fail("--threads {}: expected 0 (all) or a positive count", opt->threads);
-    if (timeGiven && !(opt->timeLimit > 0.0))
-      fail("--time {}: expected a positive number of seconds", opt->timeLimit);
     if (checkpointGiven && !(opt->checkpoint > 0.0))
       fail("--checkpoint {}: expected a positive number of seconds", opt->checkpoint);
     const uint64_t memoryLimit = maxMemory();
@@ -120,14 +100,9 @@ Action addRenderCommand(CLI::App& app) {
     const StopSignals signals;
 
     SceneRenderRequest request;
-    request.defines = defines;
-    if (!opt->model.empty()) request.model = opt->model;
-    if (sppGiven) request.samplesPerPixel = opt->spp;
-    request.seed = opt->seed;
+    request.settings = settings;
     request.crop = crop;
     request.tile = tile;
-    request.threads = opt->threads;
-    request.timeLimitSeconds = opt->timeLimit;
     request.normals = opt->normals.sourceOverride();
     request.creaseAngleDegrees = opt->normals.creaseOverride();
     request.maxMemoryBytes = memoryLimit;
@@ -142,8 +117,9 @@ Action addRenderCommand(CLI::App& app) {
     const PerspectiveCamera& camera = built.scene->camera();
 
     // Checkpoints and resuming: a state is only resumed by the render that saved it.
-    const uint64_t key = renderKey(description, options,
-                                   opt->model.empty() ? std::nullopt : std::optional(opt->model));
+    const std::optional<std::string>& modelOverride = settings.model;
+    const RenderKeys keys = renderKeys(description, options, modelOverride);
+    const uint64_t key = keys.render;
     std::optional<RenderState> resumed;
     if (!opt->resume.empty()) {
       resumed = loadRenderState(opt->resume);
@@ -172,11 +148,12 @@ Action addRenderCommand(CLI::App& app) {
           tile ? "tile " + tile->toString() : std::string("crop"),
           PixelWindow{camera.cropX(), camera.cropY(), camera.width(), camera.height()}.toString(),
           camera.filmWidth(), camera.filmHeight());
-    fmt::print(stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
-               built.integrator->adaptive()
-                   ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
-                   : std::to_string(options.samplesPerPixel),
-               opt->threads > 0 ? fmt::format(", {} threads", opt->threads) : std::string());
+    fmt::print(
+        stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
+        built.integrator->adaptive()
+            ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
+            : std::to_string(options.samplesPerPixel),
+        settings.threads > 0 ? fmt::format(", {} threads", settings.threads) : std::string());
     const RenderResult result = render(*built.scene, *built.integrator, options);
     if (!result.checkpointError.empty())
       fmt::print(stderr, "warning: checkpoints stopped: {}\n", result.checkpointError);
@@ -190,20 +167,17 @@ Action addRenderCommand(CLI::App& app) {
                           statePath.string());
     }
     // An EXR keeps its window's place on the film and what `quadtri merge` checks.
-    const std::optional<std::string> modelOverride =
-        opt->model.empty() ? std::nullopt : std::optional(opt->model);
     ImageFrame frame;
     frame.x = camera.cropX();
     frame.y = camera.cropY();
     frame.filmWidth = camera.filmWidth();
     frame.filmHeight = camera.filmHeight();
     frame.attributes = {
-        {tile_attribute::kSceneKey,
-         fmt::format("{:016x}", filmRenderKey(description, options, modelOverride))},
+        {tile_attribute::kSceneKey, fmt::format("{:016x}", keys.film)},
         {tile_attribute::kScene, std::filesystem::path(opt->scene).filename().string()},
         {tile_attribute::kSeed, std::to_string(options.seed)},
         {tile_attribute::kSamples, std::to_string(options.samplesPerPixel)},
-        {tile_attribute::kModel, opt->model.empty() ? std::string("scene") : opt->model},
+        {tile_attribute::kModel, modelOverride.value_or("scene")},
         {tile_attribute::kTile, tile   ? tile->toString()
                                 : crop ? std::string("crop")
                                        : (frame.wholeFilm(result.image) ? "film" : "crop")}};

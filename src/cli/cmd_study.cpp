@@ -11,6 +11,7 @@
 #include "quadtri/math/error.h"
 #include "quadtri/report/study.h"
 #include "quadtri/surface/model.h"
+#include "render_flags.h"
 
 namespace quadtri::cli {
 
@@ -18,8 +19,7 @@ Action addStudyCommand(CLI::App& app) {
   struct Options {
     std::string source = "data/corpus-manifest.csv", corpus, out, shard = "1/1";
     NormalFlags normals;
-    std::vector<std::string> models;
-    int threads = 0;
+    RenderFlags flags;
     bool quiet = false;
     AnalysisOptions analysis;
   };
@@ -36,11 +36,9 @@ Action addStudyCommand(CLI::App& app) {
                   "Folder the manifest's paths are relative to (default: $QUADTRI_CORPUS, else "
                   "./corpus)");
   sub->add_option("--out", opt->out, "Output folder for study.csv and summary.md")->required();
-  sub->add_option("--model", opt->models, "Models, comma-separated (default: every model)")
-      ->delimiter(',');
+  opt->flags.add(sub, kModelListFlag | kSeedFlag | kThreadsFlag,
+                 "Seed of the crack-rate lines (default 1)");
   sub->add_option("--lines", opt->analysis.crack.lines, "Random lines per crack rate")
-      ->capture_default_str();
-  sub->add_option("--seed", opt->analysis.crack.seed, "Seed of the crack-rate lines")
       ->capture_default_str();
   addNormalFlags(sub, opt->normals,
                  "Vertex normals: file (as given; angle-weighted and split at --crease-angle when "
@@ -49,21 +47,18 @@ Action addStudyCommand(CLI::App& app) {
   sub->add_option("--shard", opt->shard,
                   "I/N: only the meshes whose 0-based index i has i % N == I-1")
       ->capture_default_str();
-  sub->add_option("--threads", opt->threads, "Worker threads (0: all)")->capture_default_str();
   sub->add_flag("-q,--quiet", opt->quiet, "No progress lines on stderr");
   return [opt]() {
     namespace fs = std::filesystem;
     if (opt->analysis.crack.lines == 0) fail("--lines: expected a positive number of lines");
-    if (opt->threads < 0) fail("--threads {}: expected 0 (all) or a positive count", opt->threads);
+    const RenderSettings settings = opt->flags.settings();
     StudyOptions options;
-    options.models = opt->models;
+    options.models = opt->flags.models();
     options.analysis = opt->analysis;
+    if (settings.seed) options.analysis.crack.seed = *settings.seed;
     options.normals = opt->normals.options();
-    options.threads = opt->threads;
+    options.threads = settings.threads;
     options.shard = StudyShard::parse(opt->shard);
-    for (const std::string& model : options.models)
-      if (std::find(modelNames().begin(), modelNames().end(), model) == modelNames().end())
-        fail("--model {}: unknown model; expected one of {}", model, fmt::join(modelNames(), ", "));
 
     std::vector<StudyMesh> meshes;
     std::string from;
@@ -92,7 +87,7 @@ Action addStudyCommand(CLI::App& app) {
     const std::vector<StudyRow> rows = runStudy(meshes, options);
     const std::string what =
         fmt::format("From {}; shard {}; {} crack-rate lines, seed {}; normals {}.", from,
-                    opt->shard, opt->analysis.crack.lines, opt->analysis.crack.seed,
+                    opt->shard, options.analysis.crack.lines, options.analysis.crack.seed,
                     opt->normals.source.empty() ? std::string("file") : opt->normals.source);
     for (const fs::path& path : writeStudy(opt->out, rows, what))
       fmt::print("wrote {}\n", path.string());

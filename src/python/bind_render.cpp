@@ -35,19 +35,20 @@ void bindRender(py::module_& m) {
          std::optional<double> time, bool returnStats) {
         const std::string file = pathOf(scene);
         SceneRenderRequest request;
+        RenderSettings& settings = request.settings;
         if (defines)
           for (const auto& [key, value] : *defines) {
             const std::string name = py::str(key);
-            request.defines[name] = defineValue(name, value);
+            settings.defines[name] = defineValue(name, value);
           }
-        request.model = model;
-        request.samplesPerPixel = spp;
-        request.seed = seed;
-        request.threads = threads;
+        settings.model = model;
+        settings.samplesPerPixel = spp;
+        settings.seed = seed;
+        settings.threads = threads;
         if (time && !(*time > 0.0))
           throw py::value_error(
               fmt::format("time {}: expected a positive number of seconds", *time));
-        request.timeLimitSeconds = time.value_or(0.0);
+        settings.timeLimitSeconds = time.value_or(0.0);
         std::vector<std::string> warnings;
         request.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
 

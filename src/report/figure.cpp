@@ -68,6 +68,11 @@ Canvas composeGrid(const std::vector<std::string>& rowLabels,
 std::vector<FigureCell> renderFigureCells(const FigureRequest& request) {
   if (!request.sceneFor) fail("figure: no scene for the shapes");
   if (request.repeats < 1) fail("figure: at least one render per cell, got {}", request.repeats);
+  const RenderSettings& settings = request.settings;
+  settings.validate();
+  if (settings.model)
+    fail("figure: the model '{}' is set for every cell; the models are the columns",
+         *settings.model);
   using Clock = std::chrono::steady_clock;
   std::vector<FigureCell> cells;
   for (const std::string& shape : request.shapes) {
@@ -76,10 +81,11 @@ std::vector<FigureCell> renderFigureCells(const FigureRequest& request) {
     std::vector<BuiltScene> built;
     for (const std::string& model : request.models) {
       const auto start = Clock::now();
-      SceneDefines defines = request.defines;
+      SceneDefines defines = settings.defines;
       defines["model"] = model;
       defines["shape"] = shape;
       SceneDescription description = loadSceneDescription(file, defines);
+      settings.applyTo(description);
       overrideNormals(description, request.normals, request.creaseAngleDeg);
       built.push_back(buildScene(description, model));
       FigureCell cell{shape, model, {}, 0, 0, {}, 0, 0, 0};
@@ -92,8 +98,7 @@ std::vector<FigureCell> renderFigureCells(const FigureRequest& request) {
       for (size_t k = 0; k < n; ++k) {
         const size_t i = (k + size_t(round)) % n;
         RenderOptions options = built[i].options;
-        if (request.samplesPerPixel) options.samplesPerPixel = *request.samplesPerPixel;
-        options.threads = request.threads;
+        settings.applyTo(options);
         RenderResult result = render(*built[i].scene, *built[i].integrator, options);
         FigureCell& cell = cells[first + i];
         cell.renderTimes.push_back(result.stats.seconds);

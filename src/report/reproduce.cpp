@@ -87,14 +87,14 @@ class Reproduction {
     FigureRequest request;
     request.shapes = run.shapes;
     request.models = run.models;
-    request.defines = run.defines;
+    request.settings.defines = run.defines;
     if (run.spp > 0) {
-      request.defines["spp"] = std::to_string(run.spp);
-      request.samplesPerPixel = run.spp;
+      request.settings.defines["spp"] = std::to_string(run.spp);
+      request.settings.samplesPerPixel = run.spp;
     }
-    if (run.res > 0) request.defines["res"] = std::to_string(run.res);
+    if (run.res > 0) request.settings.defines["res"] = std::to_string(run.res);
     request.repeats = run.repeats;
-    request.threads = opt_.threads;
+    request.settings.threads = opt_.threads;
     const fs::path folder = opt_.root / "scenes" / "thesis";
     const std::string setup = run.setup;
     request.sceneFor = [folder, setup](const std::string& shape) {

@@ -276,6 +276,19 @@ std::vector<XmlElement> ObjectProperties::takeNested(std::string_view tag) {
   return out;
 }
 
+std::vector<XmlElement> ObjectProperties::takeNested(std::initializer_list<std::string_view> tags) {
+  std::vector<XmlElement> out;
+  for (auto it = nested_.begin(); it != nested_.end();) {
+    if (std::find(tags.begin(), tags.end(), it->tag()) != tags.end()) {
+      out.push_back(*it);
+      it = nested_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return out;
+}
+
 std::optional<XmlElement> ObjectProperties::takeOptional(std::string_view tag) {
   std::vector<XmlElement> found = takeNested(tag);
   if (found.size() > 1) found[1].fail("{} has more than one <{}>", describe(), tag);

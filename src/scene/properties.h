@@ -82,6 +82,8 @@ class ObjectProperties {
 
   /// Removes and returns the nested objects with this tag, in document order.
   std::vector<XmlElement> takeNested(std::string_view tag);
+  /// Removes and returns the nested objects with any of these tags, in document order.
+  std::vector<XmlElement> takeNested(std::initializer_list<std::string_view> tags);
   /// The nested object with this tag, if any; throws when there are several.
   std::optional<XmlElement> takeOptional(std::string_view tag);
   /// Throws for any property the plugin did not read or nested object it did not take, listing

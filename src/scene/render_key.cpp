@@ -13,26 +13,38 @@
 namespace quadtri {
 namespace {
 
-class Fnv1a {
- public:
+/// 64-bit FNV-1a.
+struct Fnv1a {
+  uint64_t hash = 0xcbf29ce484222325ULL;
   void bytes(const void* data, size_t n) {
     const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ULL;
+    for (size_t i = 0; i < n; ++i) hash = (hash ^ p[i]) * 0x100000001b3ULL;
+  }
+};
+
+/// The key of the render (its crop window) and of the whole film at once: the same bytes go
+/// into both hashes but the crop window's, so the scene file and every mesh file are read
+/// once for both.
+class KeyPair final : public KeyWriter {
+ public:
+  void bytes(const void* data, size_t n) override {
+    render_.bytes(data, n);
+    film_.bytes(data, n);
   }
   template <typename T>
-  void add(const T& value) {
-    static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
-    bytes(&value, sizeof(value));
+  void add(const T& v) {
+    value(v);
   }
-  void add(const std::string& text) {
-    add(uint64_t(text.size()));
-    bytes(text.data(), text.size());
+  void add(const std::string& s) { text(s); }
+  void text(std::string_view s) override {
+    value(uint64_t(s.size()));
+    bytes(s.data(), s.size());
   }
   template <typename Derived>
   void addMatrix(const Eigen::DenseBase<Derived>& m) {
     for (Eigen::Index i = 0; i < m.size(); ++i) add(double(m.derived().data()[i]));
   }
-  void file(const std::filesystem::path& path) {
+  void file(const std::filesystem::path& path) override {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail("{}: cannot read it to identify the render", path.string());
     std::vector<char> block(size_t(1) << 16);
@@ -44,17 +56,22 @@ class Fnv1a {
     }
     add(total);
   }
-  uint64_t value() const { return hash_; }
+  /// A value that differs between the two: the render's crop field and the whole film's.
+  void addEach(int renderValue, int filmValue) {
+    render_.bytes(&renderValue, sizeof(renderValue));
+    film_.bytes(&filmValue, sizeof(filmValue));
+  }
+  RenderKeys keys() const { return {render_.hash, film_.hash}; }
 
  private:
-  uint64_t hash_ = 0xcbf29ce484222325ULL;
+  Fnv1a render_, film_;
 };
 
 }  // namespace
 
-uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
-                   const std::optional<std::string>& modelOverride) {
-  Fnv1a h;
+RenderKeys renderKeys(const SceneDescription& d, const RenderOptions& options,
+                      const std::optional<std::string>& modelOverride) {
+  KeyPair h;
   h.add(std::string("quadtri " QUADTRI_VERSION " render state"));
   h.file(d.file);
   const SensorDesc& s = d.sensor;
@@ -68,57 +85,29 @@ uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
   h.add(s.film.filter.type);
   h.add(s.film.filter.stddev);
   h.add(s.film.filter.radius);
-  h.add(s.film.cropX);
-  h.add(s.film.cropY);
-  h.add(s.film.cropWidth);
-  h.add(s.film.cropHeight);
+  // filmRenderKey: the crop window reset to the whole film.
+  h.addEach(s.film.cropX, 0);
+  h.addEach(s.film.cropY, 0);
+  h.addEach(s.film.cropWidth, s.film.width);
+  h.addEach(s.film.cropHeight, s.film.height);
   h.addMatrix(s.principalPointOffset);
   h.add(s.sampler.sampleCount);
   h.add(s.sampler.seed);
-  const IntegratorDesc& i = d.integrator;
-  h.add(i.type);
-  h.add(i.maxDepth);
-  h.add(i.rrDepth);
-  h.add(i.hideEmitters);
-  h.add(i.emitterSamples);
-  h.add(i.bsdfSamples);
-  h.add(i.threshold);
-  h.add(i.minSamples);
-  h.add(i.maxSamples);
+  // Each plugin writes its own parameters (PluginParams::addToKey).
+  auto params = [&](const std::string& type, const PluginParams* p) {
+    if (p)
+      p->addToKey(h, type);
+    else
+      h.text(type);
+  };
+  params(d.integrator.type, d.integrator.params.get());
   h.add(uint64_t(d.bsdfs.size()));
-  for (const BsdfDesc& b : d.bsdfs) {
-    h.add(b.type);
-    h.addMatrix(b.reflectance);
-    for (const IorValue* ior : {&b.intIor, &b.extIor}) {
-      h.add(uint64_t(ior->index()));
-      if (const double* v = std::get_if<double>(ior))
-        h.add(*v);
-      else
-        h.add(std::get<std::string>(*ior));
-    }
-    h.add(b.material);
-    h.addMatrix(b.eta);
-    h.addMatrix(b.k);
-    h.add(b.alpha);
-    h.add(b.nested ? int64_t(*b.nested) : int64_t(-1));
-  }
+  for (const BsdfDesc& b : d.bsdfs) params(b.type, b.params.get());
   h.add(uint64_t(d.emitters.size()));
-  for (const EmitterDesc& e : d.emitters) {
-    h.add(e.type);
-    h.addMatrix(e.intensity);
-    h.addMatrix(e.position);
-    h.addMatrix(e.radiance);
-  }
+  for (const EmitterDesc& e : d.emitters) params(e.type, e.params.get());
   h.add(uint64_t(d.shapes.size()));
   for (const ShapeDesc& shape : d.shapes) {
-    h.add(shape.type);
-    if (shape.type == ShapeDesc::Type::Obj || shape.type == ShapeDesc::Type::Ply)
-      h.file(shape.filename);
-    h.add(shape.model);
-    h.add(shape.tessellation);
-    h.add(shape.normals.source);
-    h.add(shape.normals.creaseAngleDeg);
-    h.add(shape.faceNormals);
+    params(shape.type, shape.params.get());
     h.add(shape.flipNormals);
     h.addMatrix(shape.toWorld);
     h.add(uint64_t(shape.bsdf));
@@ -131,7 +120,12 @@ uint64_t renderKey(const SceneDescription& d, const RenderOptions& options,
   h.add(options.filter.kind);
   h.add(options.filter.stddev);
   h.add(options.filter.tentRadius);
-  return h.value();
+  return h.keys();
+}
+
+uint64_t renderKey(const SceneDescription& description, const RenderOptions& options,
+                   const std::optional<std::string>& modelOverride) {
+  return renderKeys(description, options, modelOverride).render;
 }
 
 void checkResumable(const RenderState& state, uint64_t key, int width, int height,
@@ -147,13 +141,9 @@ void checkResumable(const RenderState& state, uint64_t key, int width, int heigh
         path, state.key, key);
 }
 
-uint64_t filmRenderKey(SceneDescription description, const RenderOptions& options,
+uint64_t filmRenderKey(const SceneDescription& description, const RenderOptions& options,
                        const std::optional<std::string>& modelOverride) {
-  FilmDesc& film = description.sensor.film;
-  film.cropX = film.cropY = 0;
-  film.cropWidth = film.width;
-  film.cropHeight = film.height;
-  return renderKey(description, options, modelOverride);
+  return renderKeys(description, options, modelOverride).film;
 }
 
 }  // namespace quadtri

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "quadtri/scene/integrator/path_xml.h"
 #include "scene_parser.h"
 
 namespace quadtri {
@@ -40,16 +41,15 @@ class SceneParser {
     if (!sensorLocation_)
       root.fail("the scene has no <sensor type=\"perspective\">; quadtri needs one");
     SceneDescription& scene = state_.scene;
-    if (!integratorLocation_) scene.integrator.location = root.location();
     IntegratorDesc& integrator = scene.integrator;
-    if (integrator.type == IntegratorDesc::Type::Adaptive && integrator.maxSamples == 0) {
-      integrator.maxSamples = scene.sensor.sampler.sampleCount;
-      if (integrator.maxSamples < integrator.minSamples)
-        fail(
-            "{}: integrator 'adaptive': max_samples defaults to the sampler's sample_count "
-            "({}), which is below min_samples ({})",
-            integrator.location, integrator.maxSamples, integrator.minSamples);
+    if (!integratorLocation_) {
+      integrator.type = "path";
+      integrator.params = std::make_shared<PathIntegratorParams>();
+      integrator.location = root.location();
     }
+    if (std::shared_ptr<const IntegratorParams> resolved = integrator.params->withSamplerCount(
+            scene.sensor.sampler.sampleCount, integrator.location, scene.file.string()))
+      integrator.params = std::move(resolved);
     return std::move(state_.scene);
   }
 

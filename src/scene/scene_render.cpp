@@ -12,20 +12,16 @@ namespace quadtri {
 
 PreparedRender prepareSceneRender(const std::filesystem::path& file,
                                   const SceneRenderRequest& request) {
-  if (request.samplesPerPixel && *request.samplesPerPixel <= 0)
-    fail("spp {}: expected a positive count", *request.samplesPerPixel);
-  if (request.threads < 0)
-    fail("threads {}: expected 0 (all) or a positive count", request.threads);
-  if (request.timeLimitSeconds < 0.0 || !std::isfinite(request.timeLimitSeconds))
-    fail("time {}: expected a positive number of seconds", request.timeLimitSeconds);
+  const RenderSettings& settings = request.settings;
+  settings.validate();
 
   PreparedRender prepared;
   SceneDescription& description = prepared.description;
-  description = loadSceneDescription(file, request.defines);
+  description = loadSceneDescription(file, settings.defines);
   if (request.note)
     for (const std::string& note : description.notes) request.note(note);
   if (request.warn)
-    for (const auto& [name, value] : request.defines)
+    for (const auto& [name, value] : settings.defines)
       if (std::find(description.defaultNames.begin(), description.defaultNames.end(), name) ==
           description.defaultNames.end())
         request.warn(fmt::format(
@@ -44,17 +40,14 @@ PreparedRender prepareSceneRender(const std::filesystem::path& file,
     film.cropWidth = window.width;
     film.cropHeight = window.height;
   }
-  if (request.samplesPerPixel) overrideSamplesPerPixel(description, *request.samplesPerPixel);
+  settings.applyTo(description);
   overrideNormals(description, request.normals, request.creaseAngleDegrees);
-  prepared.built = buildScene(description, request.model, request.maxMemoryBytes);
+  prepared.built = buildScene(description, settings.model, request.maxMemoryBytes);
   if (request.warn)
     for (const std::string& warning : prepared.built.warnings) request.warn(warning);
   RenderOptions& options = prepared.options;
   options = prepared.built.options;
-  if (request.samplesPerPixel) options.samplesPerPixel = *request.samplesPerPixel;
-  if (request.seed) options.seed = *request.seed;
-  options.threads = request.threads;
-  options.timeLimitSeconds = request.timeLimitSeconds;
+  settings.applyTo(options);
   return prepared;
 }
 

@@ -74,3 +74,17 @@ def test_threads_do_not_change_the_image(repo):
     a = quadtri.render(repo / THESIS, spp=2, defines={"res": 16}, threads=1)
     b = quadtri.render(repo / THESIS, spp=2, defines={"res": 16}, threads=2)
     np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.skipif(oiio is None, reason="needs Debian's python3-openimageio")
+def test_spp_caps_an_adaptive_integrator_as_the_cli_does(cli, repo, tmp_path):
+    """spp means what --spp means (RenderSettings): setup b's adaptive integrator (min_samples
+    16, max_samples $spp) is capped at 4 samples per pixel, bit for bit the CLI's image."""
+    scene = repo / "scenes/thesis/b-triangle.xml"
+    exr = tmp_path / "cli.exr"
+    out = cli("render", scene, "-D", "res=8", "--spp", 4, "--seed", 2, "-o", exr).stdout
+    assert "8x8, 4.0 samples/pixel" in out
+    img, stats = quadtri.render(scene, spp=4, seed=2, defines={"res": 8}, return_stats=True)
+    assert stats["samples_per_pixel"] == 4.0
+    assert "max=4" in stats["integrator"]
+    np.testing.assert_array_equal(img, read_exr(exr))

@@ -103,8 +103,8 @@ TEST(FigureCells, EachCellComesFromItsShapesSceneWithTheDefines) {
   request.shapes = {"dim", "bright"};
   request.models = {"shading", "quadric-implicit"};
   request.sceneFor = [&](const std::string& shape) { return folder / ("t-" + shape + ".xml"); };
-  request.defines["res"] = "6";
-  request.samplesPerPixel = 2;
+  request.settings.defines["res"] = "6";
+  request.settings.samplesPerPixel = 2;
   int calls = 0;
   request.onCell = [&](const FigureCell&) { ++calls; };
   const std::vector<FigureCell> cells = renderFigureCells(request);
@@ -137,8 +137,8 @@ TEST(FigureCells, RepeatsRenderEveryCellOncePerRoundAndKeepTheMedian) {
   request.shapes = {"sky"};
   request.models = {"shading", "quadric-param", "quadric-implicit"};
   request.sceneFor = [&](const std::string& shape) { return folder / ("t-" + shape + ".xml"); };
-  request.defines["res"] = "4";
-  request.samplesPerPixel = 1;
+  request.settings.defines["res"] = "4";
+  request.settings.samplesPerPixel = 1;
   request.repeats = 4;
   const std::vector<FigureCell> cells = renderFigureCells(request);
   std::filesystem::remove_all(folder);

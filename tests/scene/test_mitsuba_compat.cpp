@@ -10,6 +10,9 @@
 #include "quadtri/math/error.h"
 #include "quadtri/render/integrator/path_integrator.h"
 #include "quadtri/render/renderer.h"
+#include "quadtri/scene/bsdf/diffuse_xml.h"
+#include "quadtri/scene/bsdf/rough_conductor_xml.h"
+#include "quadtri/scene/emitter/constant_xml.h"
 #include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
 #include "quadtri/scene/spectrum.h"
@@ -140,14 +143,18 @@ TEST(MitsubaCompat, SpectraBecomeRgb) {
     <bsdf type="diffuse" id="red"><spectrum name="reflectance" value="380:0.05, 580:0.05, 600:0.9, 780:0.9"/></bsdf>
     <emitter type="constant"><spectrum name="radiance" value="1.5"/></emitter>)"));
   ASSERT_EQ(scene.bsdfs.size(), 3u);
-  EXPECT_NEAR((scene.bsdfs[0].reflectance - Color::Constant(0.4)).abs().maxCoeff(), 0.0, 1e-15);
-  EXPECT_NEAR((scene.bsdfs[1].reflectance - Color::Constant(0.4)).abs().maxCoeff(), 0.0, 1e-12);
+  EXPECT_NEAR(
+      (scene.bsdfs[0].as<DiffuseBsdfParams>()->reflectance - Color::Constant(0.4)).abs().maxCoeff(),
+      0.0, 1e-15);
+  EXPECT_NEAR(
+      (scene.bsdfs[1].as<DiffuseBsdfParams>()->reflectance - Color::Constant(0.4)).abs().maxCoeff(),
+      0.0, 1e-12);
   // A spectrum that reflects only above 590 nm is red: far more red than green or blue.
-  const Color red = scene.bsdfs[2].reflectance;
+  const Color red = scene.bsdfs[2].as<DiffuseBsdfParams>()->reflectance;
   EXPECT_GT(red[0], 0.6);
   EXPECT_LT(red[1], 0.35);
   EXPECT_LT(red[2], 0.15);
-  EXPECT_NEAR(scene.emitters[0].radiance[1], 1.5, 1e-15);
+  EXPECT_NEAR(scene.emitters[0].as<ConstantEmitterParams>()->radiance[1], 1.5, 1e-15);
 }
 
 TEST(MitsubaCompat, MatchingFunctionsHaveTheCieIntegrals) {
@@ -196,7 +203,7 @@ TEST(MitsubaCompat, EveryDocumentedBsdfEmitterAndShapePropertyIsAccepted) {
       <boolean name="flip_normals" value="false"/>
       <emitter type="area"><rgb name="radiance" value="1"/><float name="sampling_weight" value="1"/></emitter></shape>)");
   ASSERT_EQ(scene.bsdfs.size(), 4u);  // three, and the default one of the sphere
-  EXPECT_DOUBLE_EQ(scene.bsdfs[2].alpha, 0.2);
+  EXPECT_DOUBLE_EQ(scene.bsdfs[2].as<RoughConductorBsdfParams>()->alpha, 0.2);
   EXPECT_TRUE(mentions(scene.notes, "sample_visible"));
   EXPECT_TRUE(mentions(scene.notes, "emitter 'point': sampling_weight"));
   EXPECT_TRUE(mentions(scene.notes, "emitter 'area': sampling_weight"));

@@ -59,6 +59,18 @@ TEST(RenderKey, ChangesWithWhatTheImageDependsOnOnly) {
   SceneDescription cropped = d;
   cropped.sensor.film.cropX = 1;
   EXPECT_NE(renderKey(cropped, options, std::nullopt), key);
+  // Both keys from one pass: the render's, and the whole film's, which no crop window changes.
+  const RenderKeys keys = renderKeys(d, options, std::nullopt);
+  EXPECT_EQ(keys.render, key);
+  EXPECT_EQ(keys.film, filmRenderKey(d, options, std::nullopt));
+  EXPECT_EQ(keys.film, keys.render);  // without a crop window the render is the whole film
+  cropped.sensor.film.cropWidth = 3;
+  EXPECT_EQ(renderKeys(cropped, options, std::nullopt).film, keys.film);
+  EXPECT_NE(renderKeys(cropped, options, std::nullopt).render, keys.render);
+  SceneDescription whole = d;
+  whole.sensor.film.cropWidth = whole.sensor.film.width;
+  whole.sensor.film.cropHeight = whole.sensor.film.height;
+  EXPECT_EQ(renderKey(whole, options, std::nullopt), keys.film);
   SceneDescription shifted = d;
   shifted.sensor.principalPointOffset = Vec2(0.1, 0.0);
   EXPECT_NE(renderKey(shifted, options, std::nullopt), key);

@@ -5,7 +5,18 @@
 #include <fstream>
 
 #include "quadtri/math/error.h"
+#include "quadtri/scene/bsdf/conductor_xml.h"
+#include "quadtri/scene/bsdf/dielectric_xml.h"
+#include "quadtri/scene/bsdf/diffuse_xml.h"
+#include "quadtri/scene/bsdf/rough_conductor_xml.h"
+#include "quadtri/scene/emitter/constant_xml.h"
+#include "quadtri/scene/emitter/point_xml.h"
+#include "quadtri/scene/integrator/adaptive_xml.h"
+#include "quadtri/scene/integrator/direct_xml.h"
+#include "quadtri/scene/integrator/normals_xml.h"
+#include "quadtri/scene/integrator/path_xml.h"
 #include "quadtri/scene/scene_loader.h"
+#include "quadtri/scene/shape/mesh_file_xml.h"
 
 namespace quadtri {
 namespace {
@@ -141,8 +152,9 @@ TEST(SceneSensor, DefaultsFollowMitsuba) {
   EXPECT_DOUBLE_EQ(s.sensor.film.filter.stddev, 0.5);
   EXPECT_EQ(s.sensor.sampler.sampleCount, 4);
   EXPECT_TRUE(s.sensor.toWorld.isIdentity());
-  EXPECT_EQ(s.integrator.type, IntegratorDesc::Type::Path);
-  EXPECT_EQ(s.integrator.maxDepth, -1);
+  EXPECT_EQ(s.integrator.type, "path");
+  ASSERT_TRUE(s.integrator.as<PathIntegratorParams>());
+  EXPECT_EQ(s.integrator.as<PathIntegratorParams>()->path.maxDepth, -1);
 }
 
 TEST(SceneTransform, RotateTranslateScaleMatrix) {
@@ -181,11 +193,12 @@ TEST(SceneIntegrator, SamplesPerPixelOverrideCapsAdaptiveIntegrators) {
       <integrator type="path"/></integrator>)";
   SceneDescription a = parse(adaptive);
   overrideSamplesPerPixel(a, 100);
-  EXPECT_EQ(a.integrator.maxSamples, 100);
-  EXPECT_EQ(a.integrator.minSamples, 16);
+  ASSERT_TRUE(a.integrator.as<AdaptiveIntegratorParams>());
+  EXPECT_EQ(a.integrator.as<AdaptiveIntegratorParams>()->maxSamples, 100);
+  EXPECT_EQ(a.integrator.as<AdaptiveIntegratorParams>()->minSamples, 16);
   overrideSamplesPerPixel(a, 4);
-  EXPECT_EQ(a.integrator.maxSamples, 4);
-  EXPECT_EQ(a.integrator.minSamples, 4);
+  EXPECT_EQ(a.integrator.as<AdaptiveIntegratorParams>()->maxSamples, 4);
+  EXPECT_EQ(a.integrator.as<AdaptiveIntegratorParams>()->minSamples, 4);
   EXPECT_EQ(a.sensor.sampler.sampleCount, 4);
   EXPECT_THROW(overrideSamplesPerPixel(a, 1), Error);
 }
@@ -206,36 +219,43 @@ TEST(SceneIntegrator, EveryTypeAndItsParameters) {
       <integer name="max_depth" value="8"/><integer name="rr_depth" value="3"/>
       <boolean name="hide_emitters" value="true"/></integrator>)")
                          .integrator;
-  EXPECT_EQ(i.type, IntegratorDesc::Type::Path);
-  EXPECT_EQ(i.maxDepth, 8);
-  EXPECT_EQ(i.rrDepth, 3);
-  EXPECT_TRUE(i.hideEmitters);
+  EXPECT_EQ(i.type, "path");
+  ASSERT_TRUE(i.as<PathIntegratorParams>());
+  EXPECT_EQ(i.as<PathIntegratorParams>()->path.maxDepth, 8);
+  EXPECT_EQ(i.as<PathIntegratorParams>()->path.rrDepth, 3);
+  EXPECT_TRUE(i.as<PathIntegratorParams>()->path.hideEmitters);
 
   i = parse(sensor + R"(<integrator type="direct"><integer name="shading_samples" value="4"/>
       <integer name="bsdf_samples" value="2"/></integrator>)")
           .integrator;
-  EXPECT_EQ(i.type, IntegratorDesc::Type::Direct);
-  EXPECT_EQ(i.emitterSamples, 4);
-  EXPECT_EQ(i.bsdfSamples, 2);
+  EXPECT_EQ(i.type, "direct");
+  ASSERT_TRUE(i.as<DirectIntegratorParams>());
+  EXPECT_EQ(i.as<DirectIntegratorParams>()->emitterSamples, 4);
+  EXPECT_EQ(i.as<DirectIntegratorParams>()->bsdfSamples, 2);
 
-  EXPECT_EQ(parse(sensor + R"(<integrator type="normals"/>)").integrator.type,
-            IntegratorDesc::Type::Normals);
+  const IntegratorDesc normals = parse(sensor + R"(<integrator type="normals"/>)").integrator;
+  EXPECT_EQ(normals.type, "normals");
+  EXPECT_TRUE(normals.as<NormalsIntegratorParams>());
 
   i = parse(sensor + R"(<integrator type="adaptive"><float name="threshold" value="0.02"/>
       <integrator type="path"><integer name="max_depth" value="12"/></integrator>
       </integrator>)")
           .integrator;
-  EXPECT_EQ(i.type, IntegratorDesc::Type::Adaptive);
-  EXPECT_DOUBLE_EQ(i.threshold, 0.02);
-  EXPECT_EQ(i.minSamples, 16);
-  EXPECT_EQ(i.maxSamples, 500);  // the sampler's sample_count
-  EXPECT_EQ(i.maxDepth, 12);
+  EXPECT_EQ(i.type, "adaptive");
+  const AdaptiveIntegratorParams* adaptive = i.as<AdaptiveIntegratorParams>();
+  ASSERT_TRUE(adaptive);
+  EXPECT_DOUBLE_EQ(adaptive->threshold, 0.02);
+  EXPECT_EQ(adaptive->minSamples, 16);
+  EXPECT_EQ(adaptive->maxSamples, 500);  // the sampler's sample_count
+  EXPECT_EQ(adaptive->path.maxDepth, 12);
   i = parse(sensor + R"(<integrator type="adaptive"><integer name="min_samples" value="8"/>
       <integer name="max_samples" value="100"/></integrator>)")
           .integrator;
-  EXPECT_EQ(i.minSamples, 8);
-  EXPECT_EQ(i.maxSamples, 100);
-  EXPECT_DOUBLE_EQ(i.threshold, 0.05);
+  adaptive = i.as<AdaptiveIntegratorParams>();
+  ASSERT_TRUE(adaptive);
+  EXPECT_EQ(adaptive->minSamples, 8);
+  EXPECT_EQ(adaptive->maxSamples, 100);
+  EXPECT_DOUBLE_EQ(adaptive->threshold, 0.05);
 }
 
 TEST(SceneBsdf, EveryTypeAndRef) {
@@ -255,27 +275,34 @@ TEST(SceneBsdf, EveryTypeAndRef) {
   ASSERT_GE(s.bsdfs.size(), 9u);
   const BsdfDesc& blue = s.bsdfs[0];
   EXPECT_EQ(blue.id, "blue");
-  EXPECT_LT((blue.reflectance - Color(0.2, 0.25, 0.7)).abs().maxCoeff(), 1e-15);
-  EXPECT_TRUE((s.bsdfs[1].reflectance == 0.3).all());
-  EXPECT_EQ(s.bsdfs[2].type, BsdfDesc::Type::Dielectric);
-  EXPECT_EQ(std::get<std::string>(s.bsdfs[2].intIor), "bk7");
-  EXPECT_DOUBLE_EQ(std::get<double>(s.bsdfs[2].extIor), 1.0);
-  EXPECT_EQ(s.bsdfs[3].material, "Au");
-  EXPECT_EQ(s.bsdfs[4].material, "none");
-  EXPECT_DOUBLE_EQ(s.bsdfs[4].eta[1], 0.9);
-  EXPECT_DOUBLE_EQ(s.bsdfs[4].k[0], 3.9);
-  EXPECT_EQ(s.bsdfs[5].type, BsdfDesc::Type::RoughConductor);
-  EXPECT_DOUBLE_EQ(s.bsdfs[5].alpha, 0.25);
-  EXPECT_EQ(s.bsdfs[6].type, BsdfDesc::Type::TwoSided);
-  EXPECT_EQ(s.bsdfs[6].nested, 0u);
+  ASSERT_TRUE(blue.as<DiffuseBsdfParams>());
+  EXPECT_LT((blue.as<DiffuseBsdfParams>()->reflectance - Color(0.2, 0.25, 0.7)).abs().maxCoeff(),
+            1e-15);
+  EXPECT_TRUE((s.bsdfs[1].as<DiffuseBsdfParams>()->reflectance == 0.3).all());
+  EXPECT_EQ(s.bsdfs[2].type, "dielectric");
+  const DielectricBsdfParams* glass = s.bsdfs[2].as<DielectricBsdfParams>();
+  ASSERT_TRUE(glass);
+  EXPECT_EQ(std::get<std::string>(glass->intIor), "bk7");
+  EXPECT_DOUBLE_EQ(std::get<double>(glass->extIor), 1.0);
+  ASSERT_TRUE(s.bsdfs[3].as<ConductorBsdfParams>());
+  EXPECT_EQ(s.bsdfs[3].as<ConductorBsdfParams>()->conductor.material, "Au");
+  const ConductorSpec& metal = s.bsdfs[4].as<ConductorBsdfParams>()->conductor;
+  EXPECT_EQ(metal.material, "none");
+  EXPECT_DOUBLE_EQ(metal.eta[1], 0.9);
+  EXPECT_DOUBLE_EQ(metal.k[0], 3.9);
+  EXPECT_EQ(s.bsdfs[5].type, "roughconductor");
+  ASSERT_TRUE(s.bsdfs[5].as<RoughConductorBsdfParams>());
+  EXPECT_DOUBLE_EQ(s.bsdfs[5].as<RoughConductorBsdfParams>()->alpha, 0.25);
+  EXPECT_EQ(s.bsdfs[6].type, "twosided");
+  EXPECT_EQ(s.bsdfs[6].params->nested(), 0u);
   ASSERT_EQ(s.shapes.size(), 2u);
   EXPECT_EQ(s.shapes[0].bsdf, 3u);
   // A nested twosided: its inner BSDF is stored before it.
   const BsdfDesc& outer = s.bsdfs.at(s.shapes[1].bsdf);
-  ASSERT_EQ(outer.type, BsdfDesc::Type::TwoSided);
-  ASSERT_TRUE(outer.nested);
-  EXPECT_LT(*outer.nested, s.shapes[1].bsdf);
-  EXPECT_EQ(s.bsdfs[*outer.nested].type, BsdfDesc::Type::Diffuse);
+  ASSERT_EQ(outer.type, "twosided");
+  ASSERT_TRUE(outer.params->nested());
+  EXPECT_LT(*outer.params->nested(), s.shapes[1].bsdf);
+  EXPECT_EQ(s.bsdfs[*outer.params->nested()].type, "diffuse");
 }
 
 TEST(SceneEmitter, PointConstantAndArea) {
@@ -288,13 +315,17 @@ TEST(SceneEmitter, PointConstantAndArea) {
     <shape type="rectangle"><emitter type="area"><rgb name="radiance" value="10, 9, 8"/>
       </emitter></shape>)");
   ASSERT_EQ(s.emitters.size(), 3u);
-  EXPECT_EQ(s.emitters[0].type, EmitterDesc::Type::Point);
-  EXPECT_LT((s.emitters[0].intensity - Color(5, 6, 7)).abs().maxCoeff(), 1e-15);
-  EXPECT_LT((s.emitters[0].position - Vec3(0, 1.9, 0.5)).norm(), 1e-15);
-  EXPECT_TRUE((s.emitters[1].intensity == 2.0).all());
-  EXPECT_LT((s.emitters[1].position - Vec3(3, 4, 0)).norm(), 1e-15);
-  EXPECT_EQ(s.emitters[2].type, EmitterDesc::Type::Constant);
-  EXPECT_TRUE((s.emitters[2].radiance == 0.5).all());
+  EXPECT_EQ(s.emitters[0].type, "point");
+  const PointEmitterParams* p0 = s.emitters[0].as<PointEmitterParams>();
+  const PointEmitterParams* p1 = s.emitters[1].as<PointEmitterParams>();
+  ASSERT_TRUE(p0 && p1);
+  EXPECT_LT((p0->intensity - Color(5, 6, 7)).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((p0->position - Vec3(0, 1.9, 0.5)).norm(), 1e-15);
+  EXPECT_TRUE((p1->intensity == 2.0).all());
+  EXPECT_LT((p1->position - Vec3(3, 4, 0)).norm(), 1e-15);
+  EXPECT_EQ(s.emitters[2].type, "constant");
+  ASSERT_TRUE(s.emitters[2].as<ConstantEmitterParams>());
+  EXPECT_TRUE((s.emitters[2].as<ConstantEmitterParams>()->radiance == 0.5).all());
   ASSERT_EQ(s.shapes.size(), 1u);
   ASSERT_TRUE(s.shapes[0].areaRadiance);
   EXPECT_LT((*s.shapes[0].areaRadiance - Color(10, 9, 8)).abs().maxCoeff(), 1e-15);
@@ -318,25 +349,32 @@ TEST(SceneShape, MeshAndBuiltinShapes) {
   const SceneDescription s = loadSceneDescription(xml);
   ASSERT_EQ(s.shapes.size(), 4u);
   const ShapeDesc& tri = s.shapes[0];
-  EXPECT_EQ(tri.type, ShapeDesc::Type::Obj);
+  EXPECT_EQ(tri.type, "obj");
   EXPECT_EQ(tri.id, "tri");
-  EXPECT_TRUE(fs::equivalent(tri.filename, dir.path() / "meshes/tri.obj"));
-  EXPECT_EQ(tri.model, "flat");
-  EXPECT_EQ(tri.tessellation, "thesis");
-  EXPECT_TRUE(tri.faceNormals);
+  const MeshFileShapeParams* file = tri.as<MeshFileShapeParams>();
+  ASSERT_TRUE(file);
+  EXPECT_TRUE(fs::equivalent(file->filename, dir.path() / "meshes/tri.obj"));
+  EXPECT_EQ(file->model, "flat");
+  EXPECT_EQ(file->tessellation, "thesis");
+  EXPECT_TRUE(file->faceNormals);
   EXPECT_TRUE(tri.flipNormals);
   EXPECT_EQ(tri.location, xml.string() + ":2");
-  EXPECT_EQ(s.shapes[1].model, "shading");
-  EXPECT_TRUE(s.shapes[1].tessellation.empty());
-  EXPECT_FALSE(s.shapes[1].faceNormals);
+  const MeshFileShapeParams* plain = s.shapes[1].as<MeshFileShapeParams>();
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->model, "shading");
+  EXPECT_TRUE(plain->tessellation.empty());
+  EXPECT_FALSE(plain->faceNormals);
+  EXPECT_EQ(s.shapes[2].type, "sphere");
+  EXPECT_EQ(s.shapes[3].type, "rectangle");
   // The sphere's center and radius become its transform of the unit sphere.
   const Mat4& sphere = s.shapes[2].toWorld;
   EXPECT_LT((apply(sphere, Vec3(0, 0, 1)) - Vec3(1, 2, 3.5)).norm(), 1e-15);
   // Shapes without a BSDF share one default diffuse 0.5.
   EXPECT_EQ(s.shapes[0].bsdf, s.shapes[3].bsdf);
   const BsdfDesc& fallback = s.bsdfs.at(s.shapes[3].bsdf);
-  EXPECT_EQ(fallback.type, BsdfDesc::Type::Diffuse);
-  EXPECT_TRUE((fallback.reflectance == 0.5).all());
+  EXPECT_EQ(fallback.type, "diffuse");
+  ASSERT_TRUE(fallback.as<DiffuseBsdfParams>());
+  EXPECT_TRUE((fallback.as<DiffuseBsdfParams>()->reflectance == 0.5).all());
 }
 
 TEST(SceneParameters, SubstitutionAndCommandLinePrecedence) {
@@ -350,7 +388,9 @@ TEST(SceneParameters, SubstitutionAndCommandLinePrecedence) {
   const SceneDescription fromDefaults = parse(body, {{"r", "0.25"}});
   EXPECT_EQ(fromDefaults.sensor.sampler.sampleCount, 16);
   EXPECT_DOUBLE_EQ(fromDefaults.sensor.fov, 30.0);
-  EXPECT_LT((fromDefaults.bsdfs.at(0).reflectance - Color(0.25, 0.5, 0.25)).abs().maxCoeff(),
+  EXPECT_LT((fromDefaults.bsdfs.at(0).as<DiffuseBsdfParams>()->reflectance - Color(0.25, 0.5, 0.25))
+                .abs()
+                .maxCoeff(),
             1e-15);
   // -D wins over <default>.
   const SceneDescription overridden = parse(body, {{"spp", "256"}, {"r", "0.1"}});
@@ -375,7 +415,7 @@ TEST(SceneInclude, IncludedFileAddsObjectsAndReportsItsOwnLines) {
     <shape type="cube"><ref id="red"/></shape></scene>)");
   const SceneDescription s = loadSceneDescription(main);
   ASSERT_EQ(s.shapes.size(), 1u);
-  EXPECT_DOUBLE_EQ(s.bsdfs.at(s.shapes[0].bsdf).reflectance[0], 0.8);
+  EXPECT_DOUBLE_EQ(s.bsdfs.at(s.shapes[0].bsdf).as<DiffuseBsdfParams>()->reflectance[0], 0.8);
   const std::string message =
       errorOf("<scene version=\"3.0.0\"><include filename=\"parts/broken.xml\"/></scene>", main);
   EXPECT_NE(message.find(broken.string() + ":3:"), std::string::npos) << message;

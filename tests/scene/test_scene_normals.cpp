@@ -10,6 +10,7 @@
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
+#include "quadtri/scene/shape/mesh_file_xml.h"
 
 namespace quadtri {
 namespace {
@@ -56,13 +57,16 @@ class SceneNormals : public ::testing::Test {
 
 TEST_F(SceneNormals, PropertiesAndTheirDefaults) {
   const SceneDescription plain = parse("");
-  EXPECT_EQ(plain.shapes[1].normals.source, NormalSource::File);
-  EXPECT_EQ(plain.shapes[1].normals.creaseAngleDeg, 30.0);
+  EXPECT_EQ(plain.shapes[1].as<MeshFileShapeParams>()->normals.source, NormalSource::File);
+  EXPECT_EQ(plain.shapes[1].as<MeshFileShapeParams>()->normals.creaseAngleDeg, 30.0);
   const SceneDescription angle =
       parse(R"(<string name="normals" value="angle"/><float name="crease_angle" value="45"/>)");
-  EXPECT_EQ(angle.shapes[1].normals.source, NormalSource::Angle);
-  EXPECT_EQ(angle.shapes[1].normals.creaseAngleDeg, 45.0);
-  EXPECT_EQ(parse(R"(<string name="normals" value="average"/>)").shapes[1].normals.source,
+  EXPECT_EQ(angle.shapes[1].as<MeshFileShapeParams>()->normals.source, NormalSource::Angle);
+  EXPECT_EQ(angle.shapes[1].as<MeshFileShapeParams>()->normals.creaseAngleDeg, 45.0);
+  EXPECT_EQ(parse(R"(<string name="normals" value="average"/>)")
+                .shapes[1]
+                .as<MeshFileShapeParams>()
+                ->normals.source,
             NormalSource::Average);
 }
 
@@ -82,12 +86,14 @@ TEST_F(SceneNormals, ErrorsNameTheLineAndTheValue) {
 TEST_F(SceneNormals, OverrideReachesMeshesOnly) {
   SceneDescription s = parse("");
   overrideNormals(s, NormalSource::Average, std::nullopt);
-  EXPECT_EQ(s.shapes[1].normals.source, NormalSource::Average);
-  EXPECT_EQ(s.shapes[1].normals.creaseAngleDeg, 30.0);
+  EXPECT_EQ(s.shapes[1].as<MeshFileShapeParams>()->normals.source, NormalSource::Average);
+  EXPECT_EQ(s.shapes[1].as<MeshFileShapeParams>()->normals.creaseAngleDeg, 30.0);
   overrideNormals(s, std::nullopt, 180.0);
-  EXPECT_EQ(s.shapes[1].normals.source, NormalSource::Average);
-  EXPECT_EQ(s.shapes[1].normals.creaseAngleDeg, 180.0);
-  EXPECT_EQ(s.shapes[0].normals.source, NormalSource::File);  // the built-in cube: untouched
+  EXPECT_EQ(s.shapes[1].as<MeshFileShapeParams>()->normals.source, NormalSource::Average);
+  EXPECT_EQ(s.shapes[1].as<MeshFileShapeParams>()->normals.creaseAngleDeg, 180.0);
+  // The built-in cube has no normals to override: its parameters stay the ones parsed.
+  EXPECT_EQ(s.shapes[0].type, "cube");
+  EXPECT_FALSE(s.shapes[0].as<MeshFileShapeParams>());
   EXPECT_THROW(overrideNormals(s, std::nullopt, -5.0), Error);
 }
 

@@ -49,11 +49,11 @@ TEST_F(SceneRenderTest, TakesTheFilesSettingsWithoutOverrides) {
 TEST_F(SceneRenderTest, AppliesDefinesAndOverrides) {
   SceneRenderRequest request;
   // (Initialised whole: assigning a literal to a map entry trips GCC 12's -Wrestrict at -O3.)
-  request.defines = {{"spp", "7"}, {"unused", "1"}};
-  request.seed = 11;
-  request.threads = 2;
-  request.timeLimitSeconds = 4.5;
-  request.model = "flat";
+  request.settings.defines = {{"spp", "7"}, {"unused", "1"}};
+  request.settings.seed = 11;
+  request.settings.threads = 2;
+  request.settings.timeLimitSeconds = 4.5;
+  request.settings.model = "flat";
   std::vector<std::string> warnings;
   request.warn = [&](const std::string& w) { warnings.push_back(w); };
   PreparedRender p = prepareSceneRender(dir_ / "scene.xml", request);
@@ -65,7 +65,7 @@ TEST_F(SceneRenderTest, AppliesDefinesAndOverrides) {
   EXPECT_NE(warnings[0].find("-D unused=1: "), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("has no <default name=\"unused\">"), std::string::npos);
 
-  request.samplesPerPixel = 2;  // --spp wins over the define
+  request.settings.samplesPerPixel = 2;  // --spp wins over the define
   p = prepareSceneRender(dir_ / "scene.xml", request);
   EXPECT_EQ(p.options.samplesPerPixel, 2);
 }
@@ -80,16 +80,16 @@ TEST_F(SceneRenderTest, RejectsBadRequestsAndNamesTheSceneLine) {
     return "";
   };
   SceneRenderRequest bad;
-  bad.samplesPerPixel = 0;
+  bad.settings.samplesPerPixel = 0;
   EXPECT_EQ(messageOf(bad), "spp 0: expected a positive count");
   bad = {};
-  bad.threads = -1;
+  bad.settings.threads = -1;
   EXPECT_EQ(messageOf(bad), "threads -1: expected 0 (all) or a positive count");
   bad = {};
-  bad.model = "nope";
+  bad.settings.model = "nope";
   EXPECT_NE(messageOf(bad).find("nope"), std::string::npos);
   bad = {};
-  bad.defines = {{"spp", "x"}};
+  bad.settings.defines = {{"spp", "x"}};
   EXPECT_NE(messageOf(bad).find("scene.xml:"), std::string::npos) << messageOf(bad);
 }
 

@@ -11,6 +11,7 @@
 
 #include "quadtri/io/canvas.h"
 #include "quadtri/render/image_io.h"
+#include "quadtri/scene/render_settings.h"
 #include "quadtri/scene/scene_loader.h"
 
 namespace quadtri {
@@ -55,16 +56,16 @@ struct FigureCell {
 };
 
 /// What to render: each shape's scene file, rendered once per model (the scene's obj/ply shapes
-/// take the model), with `defines` for the scene's $parameters.
+/// take the model), with the settings' defines for the scene's $parameters.
 struct FigureRequest {
   std::vector<std::string> shapes, models;
   std::function<std::filesystem::path(const std::string& shape)> sceneFor;
-  SceneDefines defines;
-  std::optional<int> samplesPerPixel;  ///< overrides the scene's sampler when set
+  /// -D, --spp, --seed, --threads, --time with the meaning they have in `quadtri render`
+  /// (RenderSettings); `model` must be unset: each column sets its own.
+  RenderSettings settings;
   /// Override every obj/ply shape's normals and crease angle when set (overrideNormals).
   std::optional<NormalSource> normals;
   std::optional<double> creaseAngleDeg;
-  int threads = 0;  ///< 0: every hardware thread
   /// Renders per cell. A shape's models are built together and rendered in rounds, each round
   /// rendering every model once in an order rotated by one per round, so that a drift of the
   /// machine's load hits every model alike.
@@ -73,8 +74,9 @@ struct FigureRequest {
   std::function<void(const FigureCell&)> onCell;
 };
 
-/// Renders every (shape, model) cell, row-major (shapes outer). `defines["model"]` and
-/// `defines["shape"]` are set to the cell's model and shape, so one scene may serve every shape.
+/// Renders every (shape, model) cell, row-major (shapes outer). The defines `model` and `shape`
+/// are set to the cell's model and shape, so one scene may serve every shape. Throws Error for
+/// settings RenderSettings::validate refuses or that name a model.
 /// The image of a cell is that of its first render.
 std::vector<FigureCell> renderFigureCells(const FigureRequest& request);
 

@@ -23,8 +23,18 @@ uint64_t renderKey(const SceneDescription& description, const RenderOptions& opt
 
 /// renderKey of the whole film: the same for every crop window (--crop, --tile) of one render,
 /// so that `quadtri merge` can tell the tiles of one render from those of another.
-uint64_t filmRenderKey(SceneDescription description, const RenderOptions& options,
+uint64_t filmRenderKey(const SceneDescription& description, const RenderOptions& options,
                        const std::optional<std::string>& modelOverride);
+
+/// renderKey and filmRenderKey of one render together, reading the scene file and every mesh
+/// file once for both (`quadtri render` needs both: --checkpoint/--resume and the EXR's
+/// scene key).
+struct RenderKeys {
+  uint64_t render = 0;  ///< renderKey
+  uint64_t film = 0;    ///< filmRenderKey
+};
+RenderKeys renderKeys(const SceneDescription& description, const RenderOptions& options,
+                      const std::optional<std::string>& modelOverride);
 
 /// Throws Error naming `path` unless `state` was saved by a render with this key and image
 /// size.

@@ -5,15 +5,16 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "quadtri/math/color.h"
 #include "quadtri/math/vec.h"
 #include "quadtri/mesh/normals.h"
 #include "quadtri/render/camera.h"
+#include "quadtri/scene/plugin.h"
 
 namespace quadtri {
 
@@ -60,78 +61,62 @@ struct SensorDesc {
   std::string location;
 };
 
-/// The light transport algorithm. Fields not used by `type` keep their defaults.
+/// The light transport algorithm: a registered integrator (plugin.h) and its parameters.
 struct IntegratorDesc {
-  enum class Type {
-    Path,      ///< unidirectional path tracing with NEE and MIS
-    Direct,    ///< direct illumination only
-    Normals,   ///< colours surfaces by their normal (quadtri-specific)
-    Adaptive,  ///< path tracing until each pixel's relative standard error < threshold
-  } type = Type::Path;
-  int maxDepth = -1;  ///< path/adaptive: longest path in segments; -1 = unbounded
-  int rrDepth = 5;    ///< path/adaptive: depth at which Russian roulette starts
-  bool hideEmitters = false;
-  int emitterSamples = 1;   ///< direct: light samples per shading point
-  int bsdfSamples = 1;      ///< direct: BSDF samples per shading point
-  double threshold = 0.05;  ///< adaptive: relative standard error that stops a pixel
-  int minSamples = 16;      ///< adaptive: samples taken before the first test
-  int maxSamples = 0;       ///< adaptive: cap per pixel (defaults to the sampler's sample_count)
+  std::string type = "path";  ///< a name of integratorNames()
+  std::shared_ptr<const IntegratorParams> params;
   std::string location;
+
+  /// The plugin's parameters as `T`, or null when they are of another plugin.
+  template <typename T>
+  const T* as() const {
+    return dynamic_cast<const T*>(params.get());
+  }
 };
 
-/// An index of refraction: a number or a named medium ("bk7", "air", ...) to be looked up.
-using IorValue = std::variant<double, std::string>;
-
-/// A BSDF with its parameters. Fields not used by `type` keep their defaults.
+/// A BSDF: a registered type (plugin.h) and its parameters.
 struct BsdfDesc {
-  enum class Type { Diffuse, Dielectric, Conductor, RoughConductor, TwoSided } type = Type::Diffuse;
-  std::string id;                            ///< empty when unnamed
-  Color reflectance = Color::Constant(0.5);  ///< diffuse albedo
-  IorValue intIor = std::string("bk7");      ///< dielectric: interior
-  IorValue extIor = std::string("air");      ///< dielectric: exterior
-  /// conductor/roughconductor: named metal; "none" means the explicit eta and k below
-  /// (Mitsuba's default eta = 0, k = 1 is a perfect mirror).
-  std::string material = "none";
-  Color eta = Color::Zero();
-  Color k = Color::Ones();
-  double alpha = 0.1;  ///< roughconductor: GGX roughness
-  /// twosided: index of the wrapped BSDF in SceneDescription::bsdfs (always lower than this
-  /// BSDF's own index).
-  std::optional<size_t> nested;
+  std::string type;  ///< a name of bsdfNames()
+  std::string id;    ///< empty when unnamed
+  std::shared_ptr<const BsdfParams> params;
   std::string location;
+
+  template <typename T>
+  const T* as() const {
+    return dynamic_cast<const T*>(params.get());
+  }
 };
 
 /// A light that is not attached to a shape (area lights live in ShapeDesc).
 struct EmitterDesc {
-  enum class Type {
-    Point,     ///< isotropic point light: intensity in W/sr at position
-    Constant,  ///< constant environment: radiance from every direction
-  } type = Type::Point;
-  Color intensity = Color::Ones();
-  Vec3 position = Vec3::Zero();
-  Color radiance = Color::Ones();
+  std::string type;  ///< a name of emitterNames() placed at the scene's level
+  std::shared_ptr<const EmitterParams> params;
   std::string location;
+
+  template <typename T>
+  const T* as() const {
+    return dynamic_cast<const T*>(params.get());
+  }
 };
 
-/// One shape. Built-in shapes live in object space and are placed by toWorld: rectangle =
-/// [-1,1]² in z=0 facing +z; cube = [-1,1]³; sphere = the unit sphere (its center and radius
-/// are folded into toWorld).
+/// One shape: a registered type (plugin.h) with its parameters, and the placement every shape
+/// has. Built-in shapes live in object space and are placed by toWorld: rectangle = [-1,1]² in
+/// z=0 facing +z; cube = [-1,1]³; sphere = the unit sphere (its center and radius are folded
+/// into toWorld).
 struct ShapeDesc {
-  enum class Type { Obj, Ply, Rectangle, Cube, Sphere } type = Type::Obj;
-  std::string id;                  ///< empty when unnamed
-  std::filesystem::path filename;  ///< obj/ply: resolved against the scene file's folder
-  std::string model = "shading";   ///< obj/ply: a name from modelNames()
-  /// obj/ply: "N" or "thesis" for Tessellation::parse; empty for the default.
-  std::string tessellation;
-  /// obj/ply: the shading normals (`normals`: file, average or angle; `crease_angle` in
-  /// degrees, for normals computed angle-weighted: a file without normals, or `angle`).
-  NormalOptions normals;
-  bool faceNormals = false;
+  std::string type;  ///< a name of shapeNames()
+  std::string id;    ///< empty when unnamed
+  std::shared_ptr<const SceneShapeParams> params;
   bool flipNormals = false;
   Mat4 toWorld = Mat4::Identity();
   size_t bsdf = 0;                    ///< index into SceneDescription::bsdfs
   std::optional<Color> areaRadiance;  ///< set when a nested area emitter makes it a light
   std::string location;
+
+  template <typename T>
+  const T* as() const {
+    return dynamic_cast<const T*>(params.get());
+  }
 };
 
 /// Everything a scene file says, validated.
@@ -154,8 +139,9 @@ struct SceneDescription {
 /// or below 2 for an adaptive integrator.
 void overrideSamplesPerPixel(SceneDescription& scene, int samplesPerPixel);
 
-/// Sets every obj/ply shape's normals (`render --normals`, `--crease-angle`): `source` where
-/// given, `creaseAngleDeg` where given. Throws Error for an angle outside [0, 180].
+/// Sets the normals of every shape that reads a mesh file (obj/ply; SceneShapeParams::withNormals;
+/// `render --normals`, `--crease-angle`): `source` where given, `creaseAngleDeg` where given.
+/// Throws Error for an angle outside [0, 180].
 void overrideNormals(SceneDescription& scene, std::optional<NormalSource> source,
                      std::optional<double> creaseAngleDeg);
 
@@ -166,11 +152,7 @@ std::string toString(const BsdfDesc& bsdf);
 std::string toString(const EmitterDesc& emitter);
 std::string toString(const ShapeDesc& shape);
 
-/// Mitsuba's name of each enum value.
+/// Mitsuba's name of the field-of-view axis.
 std::string_view fovAxisName(FovAxis axis);
-std::string_view integratorTypeName(IntegratorDesc::Type type);
-std::string_view bsdfTypeName(BsdfDesc::Type type);
-std::string_view emitterTypeName(EmitterDesc::Type type);
-std::string_view shapeTypeName(ShapeDesc::Type type);
 
 }  // namespace quadtri

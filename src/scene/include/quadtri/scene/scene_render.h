@@ -11,6 +11,7 @@
 
 #include "quadtri/render/renderer.h"
 #include "quadtri/render/tiles.h"
+#include "quadtri/scene/render_settings.h"
 #include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
 
@@ -18,16 +19,12 @@ namespace quadtri {
 
 /// What a render takes besides the scene file (`quadtri render`'s options).
 struct SceneRenderRequest {
-  SceneDefines defines;                ///< -D name=value: wins over the file's <default>s
-  std::optional<std::string> model;    ///< --model: replaces the model of every obj/ply shape
-  std::optional<int> samplesPerPixel;  ///< --spp: the sampler's count, an adaptive integrator's cap
-  std::optional<uint64_t> seed;        ///< --seed: the sampler's seed
+  /// -D, --model, --spp, --seed, --threads, --time, as every rendering command takes them.
+  RenderSettings settings;
   /// --crop X,Y,W,H / --tile I/N (at most one): the window of the film rendered, replacing the
   /// scene's crop window; the pixels are those of the whole film's render inside it.
   std::optional<PixelWindow> crop;
   std::optional<TileIndex> tile;
-  int threads = 0;              ///< worker threads, 0: all (the image does not depend on it)
-  double timeLimitSeconds = 0;  ///< 0: none; pixels not started in time stay black
   /// --normals / --crease-angle: replace every obj/ply shape's normal settings when given.
   std::optional<NormalSource> normals;
   std::optional<double> creaseAngleDegrees;
@@ -47,11 +44,10 @@ struct PreparedRender {
   RenderOptions options;  ///< cancel and progress are left for the caller to set
 };
 
-/// Loads `file` with the request's defines, applies the samples-per-pixel override to the
-/// description, builds the scene with the model override and fills the render options. Throws
-/// Error for a bad scene or a bad request (spp below 1, negative threads, a non-positive or
-/// non-finite time limit, a crop window off the film, both a crop and a tile), naming the file
-/// and line or the argument.
+/// Loads `file` with the settings' defines, applies --spp to the description, builds the scene
+/// with the model override and fills the render options (RenderSettings::applyTo). Throws
+/// Error for a bad scene or a bad request (RenderSettings::validate, a crop window off the
+/// film, both a crop and a tile), naming the file and line or the argument.
 PreparedRender prepareSceneRender(const std::filesystem::path& file,
                                   const SceneRenderRequest& request);
 

@@ -1,0 +1,33 @@
+#include "shape_geometry.h"
+
+#include "quadtri/render/render_scene.h"
+#include "quadtri/scene/scene_description.h"
+#include "quadtri/surface/model.h"
+
+namespace quadtri {
+
+void transformMesh(TriangleMesh& mesh, const Mat4& toWorld, bool flipNormals) {
+  const Mat3 linear = toWorld.topLeftCorner<3, 3>();
+  const Vec3 translation = toWorld.topRightCorner<3, 1>();
+  const Mat3 normalMatrix = linear.inverse().transpose();
+  for (Vec3& p : mesh.positions) p = linear * p + translation;
+  for (Vec3& n : mesh.normals)
+    n = safeNormalized((flipNormals ? -1.0 : 1.0) * (normalMatrix * n), n);
+  if ((linear.determinant() < 0.0) != flipNormals) {
+    for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
+    for (Tri& t : mesh.normalIndices) std::swap(t[1], t[2]);
+  }
+}
+
+std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, TriangleMesh mesh,
+                                                 const std::string& model,
+                                                 const Tessellation& tessellation) {
+  const ShapeDesc& desc = context.desc;
+  transformMesh(mesh, desc.toWorld, desc.flipNormals);
+  std::shared_ptr<const SurfaceModel> converted =
+      makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
+  context.scene.addModel(converted, tessellation, context.bsdf, desc.areaRadiance, context.name);
+  return converted;
+}
+
+}  // namespace quadtri

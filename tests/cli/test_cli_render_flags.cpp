@@ -1,0 +1,82 @@
+// The rendering options (src/cli/render_flags.h) are parsed once: the same mistake gets the same
+// message from `render`, `figure` and `study`, and `figure --spp` caps an adaptive integrator as
+// `render --spp` does.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "cli/cli_runner.h"
+
+namespace quadtri::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kScenes = std::string(QUADTRI_TEST_DIR) + "/../scenes/thesis";
+
+/// The first line of stderr after "quadtri: error: ".
+std::string errorOf(const std::vector<std::string>& args, const fs::path& dir,
+                    const std::string& tag) {
+  CliProcess p(args, dir, tag);
+  EXPECT_EQ(p.wait(), 1) << p.stderrText();
+  const std::string err = p.stderrText();
+  const std::string prefix = "quadtri: error: ";
+  const size_t at = err.find(prefix);
+  if (at == std::string::npos) return err;
+  const size_t start = at + prefix.size();
+  return err.substr(start, err.find('\n', start) - start);
+}
+
+TEST(CliRenderFlags, EveryCommandSaysTheSameAboutTheSameMistake) {
+  const fs::path dir = freshDir("render-flags");
+  const std::string scene = kScenes + "/a-triangle.xml";
+  const std::string out = (dir / "x.exr").string(), png = (dir / "x.png").string();
+  EXPECT_EQ(errorOf({"render", scene, "-o", out, "--spp", "0"}, dir, "r1"),
+            "--spp 0: expected a positive count");
+  EXPECT_EQ(errorOf({"figure", "--scenes", kScenes, "-o", png, "--spp", "0"}, dir, "f1"),
+            "--spp 0: expected a positive count");
+  EXPECT_EQ(errorOf({"render", scene, "-o", out, "-D", "res"}, dir, "r2"),
+            "-D res: expected name=value");
+  EXPECT_EQ(errorOf({"figure", "--scenes", kScenes, "-o", png, "-D", "res"}, dir, "f2"),
+            "-D res: expected name=value");
+  EXPECT_EQ(errorOf({"render", scene, "-o", out, "--threads", "-1"}, dir, "r3"),
+            "--threads -1: expected 0 (all) or a positive count");
+  EXPECT_EQ(
+      errorOf({"study", dir.string(), "--out", (dir / "s").string(), "--threads", "-1"}, dir, "s3"),
+      "--threads -1: expected 0 (all) or a positive count");
+  const std::string unknownModel = "--model nope: unknown model; expected one of flat, ";
+  EXPECT_EQ(
+      errorOf({"render", scene, "-o", out, "--model", "nope"}, dir, "r4").rfind(unknownModel, 0),
+      0u);
+  EXPECT_EQ(errorOf({"study", dir.string(), "--out", (dir / "s").string(), "--model", "flat,nope"},
+                    dir, "s4")
+                .rfind(unknownModel, 0),
+            0u);
+  EXPECT_EQ(errorOf({"figure", "--scenes", kScenes, "-o", png, "--time", "0"}, dir, "f5"),
+            "--time 0: expected a positive number of seconds");
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(png));
+  fs::remove_all(dir);
+}
+
+TEST(CliRenderFlags, FigureSppCapsTheAdaptiveIntegratorAsRenderDoes) {
+  // Setup b's scenes are adaptive with min_samples 16; --spp 4 lowers it and caps each pixel at
+  // 4, in figure as in render (figure used to leave the cap at $spp and refuse).
+  const fs::path dir = freshDir("render-flags-spp");
+  CliProcess render({"render", kScenes + "/b-triangle.xml", "-D", "res=8", "--spp", "4", "-o",
+                     (dir / "r.exr").string()},
+                    dir, "render");
+  ASSERT_EQ(render.wait(), 0) << render.stderrText();
+  EXPECT_NE(render.stdoutText().find("image           8x8, 4.0 samples/pixel"), std::string::npos)
+      << render.stdoutText();
+  CliProcess figure(
+      {"figure", "--scenes", kScenes, "--setup", "b", "--shapes", "triangle", "--models", "shading",
+       "--res", "8", "--spp", "4", "-o", (dir / "f.png").string()},
+      dir, "figure");
+  ASSERT_EQ(figure.wait(), 0) << figure.stderrText();
+  EXPECT_NE(figure.stdoutText().find("4.0 spp"), std::string::npos) << figure.stdoutText();
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace quadtri::test
