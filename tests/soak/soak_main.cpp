@@ -109,7 +109,7 @@ std::string checkImage(const soak::Case& c, const RenderResult& r) {
 std::string runCase(const soak::Case& c, const Options& options, Tally& tally) {
   try {
     SceneRenderRequest request;
-    request.threads = options.threads;
+    request.settings.threads = options.threads;
     std::vector<std::string> warnings;
     request.warn = [&](const std::string& w) { warnings.push_back(w); };
     PreparedRender prepared = prepareSceneRender(c.scene, request);
