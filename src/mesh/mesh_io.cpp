@@ -44,6 +44,10 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
   // The header's counts must fit in the file and the memory they need in the budget before
   // Assimp allocates for them.
   const MeshFileInfo info = inspectMeshFile(path);
+  // The OBJ pre-pass counts faces exactly; without this, Assimp's refusal ("all meshes are
+  // orphaned") would not say what is wrong.
+  if (info.format == "OBJ" && info.faces == 0)
+    fail("{}: the file holds no faces (no 'f' line); a mesh needs at least one triangle", name);
   if (budget) chargeMeshFile(*budget, info, path);
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,

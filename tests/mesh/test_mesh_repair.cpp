@@ -107,6 +107,17 @@ TEST_F(MeshRepair, OnlyCollapsedTrianglesIsAClearError) {
   }
 }
 
+TEST_F(MeshRepair, AnObjWithoutFacesSaysSo) {
+  const auto p = write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  try {
+    loadMesh(p);
+    FAIL() << "loaded a mesh without faces";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("points.obj: the file holds no faces"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(MeshRepair, NonFiniteCoordinatesAreAnErrorNamingTheVertex) {
   TriangleMesh mesh;
   mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, std::nan(""), 0)};
