@@ -5,7 +5,8 @@
 # build-asan, the sanitizer build of `make sanitize`: clang, -DQUADTRI_FUZZ=ON, ASan + UBSan),
 # which is configured here only when it is not a fuzz build yet. New corpus entries go to
 # FUZZ_BUILD/corpus/NAME/ (not tracked); a crash, leak or timeout stops that harness, leaves its
-# input as FUZZ_BUILD/artifacts/NAME/crash-* (leak-*, timeout-*) and makes the script fail.
+# input as FUZZ_BUILD/artifacts/NAME/crash-* (leak-*, timeout-*, oom-*), prints it (compressed,
+# base64) so that a finding on a machine that is gone can be replayed, and makes the script fail.
 # Copy such an input into tests/fuzz-regressions/NAME/ once the bug is fixed: ctest replays it.
 #
 #   scripts/fuzz.sh [SECONDS] [NAME...]      NAME: obj ply off stl scene_xml shape_spec cli_text
@@ -61,6 +62,18 @@ report() {  # waits for one harness and prints its result
     echo "fuzz_$name FAILED: see $build/fuzz-$name.log and $build/artifacts/$name/" >&2
     grep -E "^==[0-9]+==ERROR|SUMMARY|^artifact_prefix|Test unit written" \
       "$build/fuzz-$name.log" >&2 || true
+    # The input itself, so that a finding on a CI machine (whose files are gone) can be replayed:
+    # up to 12 KiB compressed, as base64.
+    local input
+    for input in "$build/artifacts/$name"/*; do
+      [ -f "$input" ] || continue
+      local packed
+      packed=$(gzip -9c "$input" | base64 -w0)
+      if [ ${#packed} -le 16384 ]; then
+        echo "input $(basename "$input") ($(stat -c %s "$input") bytes); to replay it:" >&2
+        echo "  echo $packed | base64 -d | gunzip > input && $build/fuzz/fuzz_$name input" >&2
+      fi
+    done
     status=1
   fi
 }

@@ -13,21 +13,13 @@
 #include <string_view>
 #include <vector>
 
+#include "mesh_check.h"
 #include "quadtri/io/memory_limit.h"
 #include "quadtri/math/error.h"
 
 namespace quadtri {
-namespace {
+namespace mesh_check {
 
-constexpr uint64_t kMaxAssimpCount = std::numeric_limits<uint32_t>::max();
-
-std::string lowerExtension(const std::filesystem::path& p) {
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-// Parses a whole word as an unsigned count; nullopt when it is not one (or over 2^64).
 std::optional<uint64_t> parseCount(std::string_view word) {
   uint64_t value = 0;
   const char* end = word.data() + word.size();
@@ -36,19 +28,49 @@ std::optional<uint64_t> parseCount(std::string_view word) {
   return value;
 }
 
-// a × b + c without wrapping: saturates at 2^64 - 1 (a count that large never fits anyway).
-uint64_t mulAdd(uint64_t a, uint64_t b, uint64_t c = 0) {
+uint64_t mulAdd(uint64_t a, uint64_t b, uint64_t c) {
   constexpr uint64_t kMax = std::numeric_limits<uint64_t>::max();
   if (a != 0 && b > (kMax - c) / a) return kMax;
   return a * b + c;
 }
 
-// Refuses counts over what Assimp's 32-bit counters hold: it would read them wrapped.
 void checkAssimpCount(const std::string& name, const std::string& format, uint64_t count,
                       std::string_view what) {
   if (count > kMaxAssimpCount)
     fail("{}: the {} header declares {} {}, more than the {} Assimp can count", name, format, count,
          what, kMaxAssimpCount);
+}
+
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> w;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) w.push_back(line.substr(start, i - start));
+  }
+  return w;
+}
+
+bool parseFinite(std::string_view word) {
+  if (word.size() > 1 && word[0] == '+') word.remove_prefix(1);  // from_chars takes no '+'
+  double value = 0.0;
+  const char* end = word.data() + word.size();
+  auto [ptr, ec] = std::from_chars(word.data(), end, value);
+  return ec == std::errc() && ptr == end && std::isfinite(value);
+}
+
+}  // namespace mesh_check
+
+namespace {
+
+using namespace mesh_check;
+
+std::string lowerExtension(const std::filesystem::path& p) {
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
 // A byte stream over the file that yields whitespace-separated words and skips '#' comments
@@ -92,9 +114,6 @@ class WordReader {
   uint64_t offset_ = 0;
 };
 
-bool parseFinite(std::string_view word);
-std::vector<std::string_view> splitWords(std::string_view line);
-
 // The lines after an OFF header: `vertices` lines of at least `dims` finite numbers, then
 // `faces` lines "k i1 .. ik" with k ≥ 1 and every index below `vertices` (blank lines and
 // '#' comments skipped). Assimp's OFF importer reads past its buffers on a short vertex line
@@ -115,7 +134,7 @@ void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint6
     ++lineNo;
     if (line.find('\0') != std::string::npos)
       fail("{}:{}: a NUL byte in an OFF file", name, lineNo);
-    const std::vector<std::string_view> w = splitWords(line);
+    const std::vector<std::string_view> w = words(line);
     if (w.empty() || w[0][0] == '#') continue;
     if (v < vertices) {
       for (uint64_t k = 0; k < dims; ++k)
@@ -209,152 +228,6 @@ MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
   return info;
 }
 
-// Reads one header line of at most `limit` bytes (without its '\n' or "\r\n"); false at the
-// end of the file. A longer line is an error, so a header without line breaks allocates little.
-bool readHeaderLine(std::istream& in, std::string& line, const std::string& name, long lineNo,
-                    size_t limit = 4096) {
-  line.clear();
-  for (int c; (c = in.get()) != EOF;) {
-    if (c == '\n') {
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      return true;
-    }
-    if (line.size() >= limit)
-      fail("{}:{}: header line longer than {} bytes, expected a PLY header line", name, lineNo,
-           limit);
-    line.push_back(char(c));
-  }
-  return !line.empty();
-}
-
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> w;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    const size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > start) w.push_back(line.substr(start, i - start));
-  }
-  return w;
-}
-
-// Bytes of one binary PLY scalar type; 0 when the name is no PLY type.
-uint64_t plyTypeBytes(std::string_view type) {
-  static constexpr std::pair<std::string_view, uint64_t> types[] = {
-      {"char", 1},   {"int8", 1},    {"uchar", 1},  {"uint8", 1},  {"short", 2}, {"int16", 2},
-      {"ushort", 2}, {"uint16", 2},  {"int", 4},    {"int32", 4},  {"uint", 4},  {"uint32", 4},
-      {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (const auto& [n, bytes] : types)
-    if (n == type) return bytes;
-  return 0;
-}
-
-MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
-  const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("{}: cannot open file", name);
-  struct Element {
-    std::string name;
-    uint64_t count = 0, minBytes = 0, properties = 0;
-    long line = 0;
-  };
-  std::vector<Element> elements;
-  std::string line, format;
-  long lineNo = 1;
-  if (!readHeaderLine(in, line, name, lineNo) || words(line).size() != 1 || words(line)[0] != "ply")
-    fail("{}:1: expected 'ply', the first line of a PLY file", name);
-  bool ended = false;
-  while (!ended && readHeaderLine(in, line, name, ++lineNo)) {
-    // The header is text; a NUL byte in it is no PLY header.
-    if (line.find('\0') != std::string::npos)
-      fail("{}:{}: a NUL byte in the PLY header", name, lineNo);
-    const std::vector<std::string_view> w = words(line);
-    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "format") {
-      if (w.size() != 3 ||
-          (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
-        fail("{}:{}: '{}': expected 'format ascii|binary_little_endian|binary_big_endian 1.0'",
-             name, lineNo, line);
-      format = std::string(w[1]);
-    } else if (w[0] == "element") {
-      if (w.size() != 3) fail("{}:{}: '{}': expected 'element NAME COUNT'", name, lineNo, line);
-      const std::optional<uint64_t> count = parseCount(w[2]);
-      if (!count)
-        fail("{}:{}: element {}'s count '{}' is not an unsigned integer", name, lineNo, w[1], w[2]);
-      // Assimp's PLY importer frees what it did not allocate when an element repeats
-      // (found by fuzz_ply).
-      for (const Element& e : elements)
-        if (e.name == w[1])
-          fail("{}:{}: element '{}' is declared again (first on line {})", name, lineNo, w[1],
-               e.line);
-      elements.push_back({std::string(w[1]), *count, 0, 0, lineNo});
-    } else if (w[0] == "property") {
-      if (elements.empty())
-        fail("{}:{}: property before any element, expected 'element NAME COUNT' first", name,
-             lineNo);
-      const bool list = w.size() >= 2 && w[1] == "list";
-      if ((list && w.size() != 5) || (!list && w.size() != 3))
-        fail(
-            "{}:{}: '{}': expected 'property TYPE NAME' or 'property list COUNT_TYPE "
-            "INDEX_TYPE NAME'",
-            name, lineNo, line);
-      for (size_t k = 1; k + 1 < w.size(); ++k) {
-        if (k == 1 && list) continue;
-        if (plyTypeBytes(w[k]) == 0)
-          fail(
-              "{}:{}: property type '{}' is not a PLY type, expected char, uchar, short, "
-              "ushort, int, uint, float, double or int8 ... float64",
-              name, lineNo, w[k]);
-      }
-      // ASCII: a value is at least a digit and a separator; a list at least its count.
-      // Binary: a scalar's size; a list at least its count (it may be empty).
-      Element& e = elements.back();
-      e.minBytes += format == "ascii" ? 2 : plyTypeBytes(w[list ? 2 : 1]);
-      ++e.properties;
-    } else if (w[0] == "end_header") {
-      ended = true;
-    }
-    // Any other line declares nothing; Assimp skips it too (Blender 2.4 wrote bare comments).
-    if (format.empty() && (w[0] == "element" || w[0] == "property"))
-      fail("{}:{}: expected the 'format' line before '{}'", name, lineNo, w[0]);
-  }
-  if (!ended) fail("{}: the PLY header has no 'end_header' line", name);
-  const uint64_t headerBytes = uint64_t(in.tellg());
-  const uint64_t body = fileBytes - std::min(fileBytes, headerBytes);
-  uint64_t need = 0;
-  for (const Element& e : elements) need = mulAdd(e.count, e.minBytes, need);
-  // ASCII's last value may end without its separator.
-  const uint64_t slack = format == "ascii" && need > 0 ? 1 : 0;
-  if (need - slack > body) {
-    std::string what;
-    for (const Element& e : elements)
-      what +=
-          fmt::format("{}{} {} × {} bytes", what.empty() ? "" : ", ", e.count, e.name, e.minBytes);
-    fail(
-        "{}: the PLY header ({}) declares elements that take at least {} bytes ({}); the "
-        "file has {} bytes after its header",
-        name, format, need, what, body);
-  }
-  MeshFileInfo info;
-  info.format = "PLY " + format;
-  info.fileBytes = fileBytes;
-  for (const Element& e : elements) {
-    checkAssimpCount(name, info.format, e.count, "'" + e.name + "' elements");
-    if (e.name == "vertex")
-      info.vertices += e.count;
-    else if (e.name == "face")
-      info.faces += e.count;
-    else
-      info.otherElements += e.count;
-  }
-  info.corners = 3 * info.faces;
-  info.triangles = info.faces;
-  return info;
-}
-
-bool parseFinite(std::string_view word);
-
 // ASCII STL: every facet ... endfacet holds exactly three `vertex` entries of three numbers
 // (Assimp leaks its mesh when it throws on one that does not); returns the facets.
 uint64_t checkAsciiStlFacets(std::ifstream& in, const std::string& name) {
@@ -438,19 +311,6 @@ MeshFileInfo inspectStl(const std::filesystem::path& path, uint64_t fileBytes) {
   return info;
 }
 
-// Splits a line into whitespace-separated words.
-std::vector<std::string_view> splitWords(std::string_view line) {
-  return words(line);
-}
-
-bool parseFinite(std::string_view word) {
-  if (word.size() > 1 && word[0] == '+') word.remove_prefix(1);  // from_chars takes no '+'
-  double value = 0.0;
-  const char* end = word.data() + word.size();
-  auto [ptr, ec] = std::from_chars(word.data(), end, value);
-  return ec == std::errc() && ptr == end && std::isfinite(value);
-}
-
 // Checks one face-vertex index against the `count` elements defined above it; returns an error
 // text (what was wrong, expected what) or "" when the index is valid.
 std::string checkObjIndex(std::string_view text, long count, const char* what, const char* plural) {
@@ -486,7 +346,7 @@ MeshFileInfo validateObj(const std::filesystem::path& path, uint64_t fileBytes) 
   std::string line;
   for (long lineNo = 1; std::getline(in, line); ++lineNo) {
     if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const std::vector<std::string_view> w = splitWords(line);
+    const std::vector<std::string_view> w = words(line);
     if (w.empty()) continue;
     const std::string_view key = w[0];
     if (key == "v" || key == "vn" || key == "vt") {
@@ -563,7 +423,7 @@ MeshFileInfo inspectMeshFile(const std::filesystem::path& path) {
   else if (ext == ".off")
     info = inspectOff(path, fileBytes);
   else if (ext == ".ply")
-    info = inspectPly(path, fileBytes);
+    info = mesh_check::inspectPly(path, fileBytes);
   else if (ext == ".stl")
     info = inspectStl(path, fileBytes);
   else

@@ -129,6 +129,69 @@ TEST(MeshIoCheck, BinaryPlyCountsOverTheFileSizeAreRefused) {
                  {"type.ply:4", "float128"});
 }
 
+TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
+  // Assimp reserves what a list count says before reading its values (fuzz_ply: a count of
+  // 1,111,111,110 in a 2 KB ASCII file was 8.9 GB).
+  const std::string header =
+      "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list FACE_COUNT int vertex_indices\nend_header\n";
+  const auto plyHeader = [&](const std::string& format, const std::string& countType) {
+    std::string h = "ply\nformat " + format + " 1.0\n" + header;
+    h.replace(h.find("FACE_COUNT"), 10, countType);
+    return h;
+  };
+  const std::string ascii = plyHeader("ascii", "uchar") + "0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n";
+  expectContains(
+      refusal([&] { loadMesh(writeFile("ascii-list.ply", ascii + "1111111110 0 2 1\n")); }),
+      {"ascii-list.ply:15: element 'face' 1: list 'vertex_indices' has count "
+       "'1111111110'"});
+  expectContains(refusal([&] { loadMesh(writeFile("ascii-short.ply", ascii)); }),
+                 {"ascii-short.ply: the file ends at element 'face' 1 of 2"});
+  EXPECT_EQ(loadMesh(writeFile("ascii-ok.ply", ascii + "\n3 1 3 2 7\n")).triangleCount(), 2u)
+      << "a blank line and a word past the last property are accepted, as Assimp does";
+
+  // Binary, both byte orders: counts decoded with the file's order and the type's sign.
+  const auto big = [](auto v) {
+    std::string b = bytesOf(v);
+    std::reverse(b.begin(), b.end());
+    return b;
+  };
+  std::string vertices;
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 1.f, 1.f, 0.f}) vertices += big(v);
+  std::string faces = big(int16_t(3));
+  for (int32_t i : {0, 1, 2}) faces += big(i);
+  const std::string bigEndian = plyHeader("binary_big_endian", "short") + vertices + faces;
+  std::string second = big(int16_t(3));
+  for (int32_t i : {1, 3, 2}) second += big(i);
+  EXPECT_EQ(loadMesh(writeFile("big-ok.ply", bigEndian + second)).triangleCount(), 2u);
+  expectContains(
+      refusal([&] { loadMesh(writeFile("big-negative.ply", bigEndian + big(int16_t(-1)))); }),
+      {"big-negative.ply: element 'face' 1 of 2: list 'vertex_indices' declares -1 values"});
+  std::string little;
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 1.f, 1.f, 0.f}) little += bytesOf(v);
+  little += bytesOf(uint32_t(3)) + bytesOf(int32_t(0)) + bytesOf(int32_t(1)) + bytesOf(int32_t(2));
+  little += bytesOf(uint32_t(1000000000)) + bytesOf(int32_t(0));
+  expectContains(
+      refusal([&] {
+        loadMesh(writeFile("little-huge.ply", plyHeader("binary_little_endian", "uint") + little));
+      }),
+      {"little-huge.ply: element 'face' 1 of 2: list 'vertex_indices' declares "
+       "1000000000 values of 4 bytes; the file has 4 bytes left"});
+  expectContains(refusal([&] {
+                   inspectMeshFile(writeFile("float-count.ply",
+                                             plyHeader("binary_little_endian", "float") + little));
+                 }),
+                 {"float-count.ply:8: list 'vertex_indices' has count type 'float'"});
+  // A line among an element's properties that is none: Assimp would read another layout.
+  expectContains(
+      refusal([&] {
+        inspectMeshFile(writeFile("not-a-property.ply",
+                                  "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                  "property float x\npro0.0perty float y\nend_header\n0\n"));
+      }),
+      {"not-a-property.ply:5: 'pro0.0perty float y': expected 'property'"});
+}
+
 TEST(MeshIoCheck, BinaryStlCountsOverTheFileSizeAreRefused) {
   const fs::path path = writeFile("big.stl", binaryStl(100000000, 1));
   expectContains(refusal([&] { loadMesh(path); }),

@@ -1,0 +1,321 @@
+// PLY before Assimp reads it: the header, each declared count against the file's size, and
+// then the body, element by element. Assimp's PLY importer trusts every list count it reads
+// (ASCII or binary) and reserves that many values before it reads them: a count of 10^9 in a
+// 2 KB file is 8 GB allocated and then a loop over a buffer that ran out (found by fuzz_ply).
+// So every list count is checked here against the bytes left after it.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mesh_check.h"
+#include "quadtri/math/error.h"
+
+namespace quadtri::mesh_check {
+namespace {
+
+// Reads one header line of at most `limit` bytes (without its '\n' or "\r\n"); false at the
+// end of the file. A longer line is an error, so a header without line breaks allocates little.
+bool readHeaderLine(std::istream& in, std::string& line, const std::string& name, long lineNo,
+                    size_t limit = 4096) {
+  line.clear();
+  for (int c; (c = in.get()) != EOF;) {
+    if (c == '\n') {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      return true;
+    }
+    if (line.size() >= limit)
+      fail("{}:{}: header line longer than {} bytes, expected a PLY header line", name, lineNo,
+           limit);
+    line.push_back(char(c));
+  }
+  return !line.empty();
+}
+
+struct PlyType {
+  std::string_view name;
+  uint8_t bytes;
+  bool isSigned, isInteger;
+};
+
+constexpr PlyType kPlyTypes[] = {
+    {"char", 1, true, true},    {"int8", 1, true, true},     {"uchar", 1, false, true},
+    {"uint8", 1, false, true},  {"short", 2, true, true},    {"int16", 2, true, true},
+    {"ushort", 2, false, true}, {"uint16", 2, false, true},  {"int", 4, true, true},
+    {"int32", 4, true, true},   {"uint", 4, false, true},    {"uint32", 4, false, true},
+    {"float", 4, true, false},  {"float32", 4, true, false}, {"double", 8, true, false},
+    {"float64", 8, true, false}};
+
+// The PLY scalar type of that name; nullptr when there is none.
+const PlyType* plyType(std::string_view name) {
+  for (const PlyType& t : kPlyTypes)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+struct Property {
+  std::string name;
+  const PlyType* value = nullptr;
+  const PlyType* count = nullptr;  // lists only
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0, minBytes = 0;
+  long line = 0;
+  std::vector<Property> properties;
+  bool hasList() const {
+    return std::any_of(properties.begin(), properties.end(),
+                       [](const Property& p) { return p.count != nullptr; });
+  }
+};
+
+// Reads the body of a binary PLY in blocks, tracking how many bytes are left in the file.
+class BinaryBody {
+ public:
+  BinaryBody(std::ifstream& in, uint64_t bytes) : in_(in), left_(bytes) {}
+  uint64_t left() const { return left_ + (end_ - pos_); }
+  /// Skips `n` bytes; false when fewer are left.
+  bool skip(uint64_t n) {
+    if (n > left()) return false;
+    const uint64_t buffered = end_ - pos_;
+    if (n <= buffered) {
+      pos_ += size_t(n);
+      return true;
+    }
+    n -= buffered;
+    pos_ = end_ = 0;
+    in_.seekg(std::streamoff(n), std::ios::cur);
+    left_ -= n;
+    return true;
+  }
+  /// Reads `n` ≤ 8 bytes; false when fewer are left.
+  bool read(uint8_t* out, size_t n) {
+    if (end_ - pos_ < n && !refill()) return false;
+    if (end_ - pos_ < n) return false;
+    std::memcpy(out, buffer_.data() + pos_, n);
+    pos_ += n;
+    return true;
+  }
+
+ private:
+  bool refill() {
+    const size_t kept = end_ - pos_;
+    std::memmove(buffer_.data(), buffer_.data() + pos_, kept);
+    const size_t want = size_t(std::min<uint64_t>(buffer_.size() - kept, left_));
+    in_.read(reinterpret_cast<char*>(buffer_.data() + kept), std::streamsize(want));
+    const size_t got = size_t(in_.gcount());
+    left_ -= got;
+    pos_ = 0;
+    end_ = kept + got;
+    return got > 0;
+  }
+  std::ifstream& in_;
+  uint64_t left_;
+  std::array<uint8_t, 1 << 16> buffer_{};
+  size_t pos_ = 0, end_ = 0;
+};
+
+// A binary list count as a signed 64-bit value.
+int64_t decodeCount(const uint8_t* b, const PlyType& t, bool bigEndian) {
+  uint64_t u = 0;
+  for (size_t k = 0; k < t.bytes; ++k) u |= uint64_t(b[bigEndian ? t.bytes - 1 - k : k]) << (8 * k);
+  if (t.isSigned && t.bytes < 8 && (u >> (8 * t.bytes - 1)) != 0)
+    u |= ~uint64_t(0) << (8 * t.bytes);
+  return int64_t(u);
+}
+
+void checkBinaryBody(std::ifstream& in, uint64_t bodyBytes, const std::vector<Element>& elements,
+                     bool bigEndian, const std::string& name) {
+  BinaryBody body(in, bodyBytes);
+  for (const Element& e : elements) {
+    if (!e.hasList()) {
+      // Fixed size: the header check has already compared it with the file.
+      body.skip(mulAdd(e.count, e.minBytes));
+      continue;
+    }
+    for (uint64_t i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        if (!p.count) {
+          if (!body.skip(p.value->bytes))
+            fail("{}: element '{}' {} of {}: the file ends in property '{}'", name, e.name, i,
+                 e.count, p.name);
+          continue;
+        }
+        std::array<uint8_t, 8> raw{};
+        if (!body.read(raw.data(), p.count->bytes))
+          fail("{}: element '{}' {} of {}: the file ends in the count of list '{}'", name, e.name,
+               i, e.count, p.name);
+        const int64_t n = decodeCount(raw.data(), *p.count, bigEndian);
+        if (n < 0 || !body.skip(mulAdd(uint64_t(n), p.value->bytes)))
+          fail(
+              "{}: element '{}' {} of {}: list '{}' declares {} values of {} bytes; the file has "
+              "{} bytes left",
+              name, e.name, i, e.count, p.name, n, p.value->bytes, body.left());
+      }
+  }
+}
+
+// ASCII: one element per line (as Assimp reads them), each line holding a value per scalar
+// property and, per list, its count and that many values; blank lines are skipped, words past
+// the last property ignored and properties past the line's last word absent (as Assimp does).
+void checkAsciiBody(std::ifstream& in, long lineNo, const std::vector<Element>& elements,
+                    const std::string& name) {
+  std::string line;
+  for (const Element& e : elements)
+    for (uint64_t i = 0; i < e.count; ++i) {
+      std::vector<std::string_view> w;
+      do {
+        if (!std::getline(in, line))
+          fail("{}: the file ends at element '{}' {} of {}", name, e.name, i, e.count);
+        ++lineNo;
+        if (line.find('\0') != std::string::npos)
+          fail("{}:{}: a NUL byte in an ASCII PLY file", name, lineNo);
+        w = words(line);
+      } while (w.empty());
+      size_t k = 0;
+      for (const Property& p : e.properties) {
+        // A line short of its last properties: Assimp reads them as absent (Blender 2.77
+        // wrote a vertex list without values, assimp-testmodels' PLY/issue623.ply).
+        if (k >= w.size()) break;
+        if (!p.count) {
+          ++k;
+          continue;
+        }
+        const std::optional<uint64_t> n = parseCount(w[k]);
+        if (!n || *n > w.size() - k - 1)
+          fail(
+              "{}:{}: element '{}' {}: list '{}' has count '{}', expected an unsigned integer "
+              "followed by that many values on the line",
+              name, lineNo, e.name, i, p.name, w[k]);
+        k += 1 + size_t(*n);
+      }
+    }
+}
+
+}  // namespace
+
+MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("{}: cannot open file", name);
+  std::vector<Element> elements;
+  std::string line, format;
+  long lineNo = 1;
+  if (!readHeaderLine(in, line, name, lineNo) || words(line).size() != 1 || words(line)[0] != "ply")
+    fail("{}:1: expected 'ply', the first line of a PLY file", name);
+  bool ended = false;
+  while (!ended && readHeaderLine(in, line, name, ++lineNo)) {
+    // The header is text; a NUL byte in it is no PLY header.
+    if (line.find('\0') != std::string::npos)
+      fail("{}:{}: a NUL byte in the PLY header", name, lineNo);
+    const std::vector<std::string_view> w = words(line);
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (format.empty() && (w[0] == "element" || w[0] == "property"))
+      fail("{}:{}: expected the 'format' line before '{}'", name, lineNo, w[0]);
+    if (w[0] == "format") {
+      if (w.size() != 3 ||
+          (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+        fail("{}:{}: '{}': expected 'format ascii|binary_little_endian|binary_big_endian 1.0'",
+             name, lineNo, line);
+      if (!format.empty() && format != w[1])
+        fail("{}:{}: a second 'format' line says {}, the first said {}", name, lineNo, w[1],
+             format);
+      format = std::string(w[1]);
+    } else if (w[0] == "element") {
+      if (w.size() != 3) fail("{}:{}: '{}': expected 'element NAME COUNT'", name, lineNo, line);
+      const std::optional<uint64_t> count = parseCount(w[2]);
+      if (!count)
+        fail("{}:{}: element {}'s count '{}' is not an unsigned integer", name, lineNo, w[1], w[2]);
+      // Assimp's PLY importer frees what it did not allocate when an element repeats
+      // (found by fuzz_ply).
+      for (const Element& e : elements)
+        if (e.name == w[1])
+          fail("{}:{}: element '{}' is declared again (first on line {})", name, lineNo, w[1],
+               e.line);
+      elements.push_back({std::string(w[1]), *count, 0, lineNo, {}});
+    } else if (w[0] == "property") {
+      if (elements.empty())
+        fail("{}:{}: property before any element, expected 'element NAME COUNT' first", name,
+             lineNo);
+      const bool list = w.size() >= 2 && w[1] == "list";
+      if ((list && w.size() != 5) || (!list && w.size() != 3))
+        fail(
+            "{}:{}: '{}': expected 'property TYPE NAME' or 'property list COUNT_TYPE "
+            "INDEX_TYPE NAME'",
+            name, lineNo, line);
+      Property p;
+      p.name = std::string(w.back());
+      for (size_t k = list ? 2 : 1; k + 1 < w.size(); ++k)
+        if (!plyType(w[k]))
+          fail(
+              "{}:{}: property type '{}' is not a PLY type, expected char, uchar, short, "
+              "ushort, int, uint, float, double or int8 ... float64",
+              name, lineNo, w[k]);
+      p.value = plyType(w[list ? 3 : 1]);
+      if (list) {
+        p.count = plyType(w[2]);
+        if (!p.count->isInteger)
+          fail("{}:{}: list '{}' has count type '{}', expected an integer type", name, lineNo,
+               p.name, w[2]);
+      }
+      // ASCII: a value is at least a digit and a separator; a list at least its count.
+      // Binary: a scalar's size; a list at least its count (it may be empty).
+      Element& e = elements.back();
+      e.minBytes += format == "ascii" ? 2 : (list ? p.count : p.value)->bytes;
+      e.properties.push_back(std::move(p));
+    } else if (w[0] == "end_header") {
+      ended = true;
+    } else if (!elements.empty()) {
+      // Assimp ends an element's properties at such a line and skips the properties after it,
+      // so it would read the body with another layout than the one checked here (fuzz_ply).
+      fail("{}:{}: '{}': expected 'property', 'element', 'comment' or 'end_header'", name, lineNo,
+           line);
+    }
+    // Before the first element, any other line declares nothing and Assimp skips it too
+    // (Blender 2.47 wrote a bare comment there, assimp-testmodels' PLY/Wuson.ply).
+  }
+  if (!ended) fail("{}: the PLY header has no 'end_header' line", name);
+  const uint64_t headerBytes = uint64_t(in.tellg());
+  const uint64_t body = fileBytes - std::min(fileBytes, headerBytes);
+  uint64_t need = 0;
+  for (const Element& e : elements) need = mulAdd(e.count, e.minBytes, need);
+  // ASCII's last value may end without its separator.
+  const uint64_t slack = format == "ascii" && need > 0 ? 1 : 0;
+  if (need - slack > body) {
+    std::string what;
+    for (const Element& e : elements)
+      what +=
+          fmt::format("{}{} {} × {} bytes", what.empty() ? "" : ", ", e.count, e.name, e.minBytes);
+    fail(
+        "{}: the PLY header ({}) declares elements that take at least {} bytes ({}); the "
+        "file has {} bytes after its header",
+        name, format, need, what, body);
+  }
+  MeshFileInfo info;
+  info.format = "PLY " + format;
+  info.fileBytes = fileBytes;
+  for (const Element& e : elements) {
+    checkAssimpCount(name, info.format, e.count, "'" + e.name + "' elements");
+    if (e.name == "vertex")
+      info.vertices += e.count;
+    else if (e.name == "face")
+      info.faces += e.count;
+    else
+      info.otherElements += e.count;
+  }
+  if (format == "ascii")
+    checkAsciiBody(in, lineNo, elements, name);
+  else
+    checkBinaryBody(in, body, elements, format == "binary_big_endian", name);
+  info.corners = 3 * info.faces;
+  info.triangles = info.faces;
+  return info;
+}
+
+}  // namespace quadtri::mesh_check
