@@ -1,8 +1,5 @@
 #include "quadtri/analysis/crack_rate.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <functional>
 #include <optional>
@@ -10,6 +7,7 @@
 
 #include "quadtri/geometry/rng.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 
 namespace quadtri {
 namespace {
@@ -142,7 +140,7 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
         triangles ? triangles->count(p, d, hits, scratch) : patchCrossings(line, mergeDistance);
     return crossings % 2 == 1;
   };
-  const size_t count = tbb::parallel_reduce(
+  const size_t count = parallelReduce(
       tbb::blocked_range<size_t>(0, options.lines), size_t(0),
       [&](const tbb::blocked_range<size_t>& range, size_t sum) {
         enableFlushToZero();

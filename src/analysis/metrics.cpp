@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 #include <array>
 #include <chrono>
@@ -13,6 +11,7 @@
 #include "quadtri/geometry/model_geometry.h"
 #include "quadtri/io/csv.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 
 namespace quadtri {
 namespace {
@@ -38,7 +37,7 @@ double meanEdgeLength(const SurfaceModel& model) {
 // Max of f(t) over patches t, in parallel.
 template <typename F>
 double maxOverPatches(const SurfaceModel& model, const F& f) {
-  return tbb::parallel_reduce(
+  return parallelReduce(
       tbb::blocked_range<size_t>(0, model.patchCount()), 0.0,
       [&](const tbb::blocked_range<size_t>& range, double best) {
         for (size_t t = range.begin(); t != range.end(); ++t) best = std::max(best, f(t));
@@ -119,7 +118,7 @@ std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
     const auto [t, k] = side;
     return mesh.cornerNormal(t, mesh.triangles[t][k] == v ? k : (k + 1) % 3);
   };
-  Partial total = tbb::parallel_reduce(
+  Partial total = parallelReduce(
       tbb::blocked_range<size_t>(0, topology.edges.size()), Partial(),
       [&](const tbb::blocked_range<size_t>& range, Partial best) {
         for (size_t i = range.begin(); i != range.end(); ++i) {

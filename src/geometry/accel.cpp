@@ -5,10 +5,10 @@
 #include <xmmintrin.h>
 
 #include <cmath>
-#include <mutex>
 #include <string>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/surface/bezier_intersect.h"
 
 namespace quadtri {
@@ -107,8 +107,10 @@ void writeBounds(const Bounds3& b, double margin, RTCBounds* o) {
 }
 
 void patchBounds(const RTCBoundsFunctionArguments* args) {
+  acquireEdge(args->geometryUserPtr);  // Accel::commit's release (ThreadSanitizer)
   const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
   writeBounds((*g->patches)[args->primID].bounds, g->margin, args->bounds_o);
+  releaseEdge(&g->margin);
 }
 
 // Accel traces single rays (rtcIntersect1/rtcOccluded1), so every callback sees N == 1.
@@ -170,8 +172,10 @@ RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geome
 }
 
 void bezierBounds(const RTCBoundsFunctionArguments* args) {
+  acquireEdge(args->geometryUserPtr);
   const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
   writeBounds((*g->pieces)[args->primID].bounds, g->margin, args->bounds_o);
+  releaseEdge(&g->margin);
 }
 
 void intersectBezier(const RTCIntersectFunctionNArguments* args) {
@@ -238,6 +242,29 @@ void fillRay(const Ray& ray, RTCRay& out) {
   out.flags = 0;
 }
 
+// Embree reports errors through a callback from inside its C API, on the thread whose call
+// failed; throwing across it is not allowed, so each thread keeps its first message until
+// Accel::Impl::check() throws it once the call has returned.
+thread_local std::string embreeError;
+
+void onEmbreeError(void*, RTCError code, const char* message) {
+  if (embreeError.empty())
+    embreeError = fmt::format("Embree error {}: {}", int(code), message ? message : "");
+}
+
+// One Embree device for the process. A device per acceleration structure started and
+// reconfigured Embree's task scheduler every time, and structures built on several threads at
+// once (a study, the soak) raced inside Embree's device set-up (ThreadSanitizer).
+RTCDevice sharedDevice() {
+  static const RTCDevice device = [] {
+    const RTCDevice d = rtcNewDevice(nullptr);
+    if (!d) fail("creating the Embree device failed (error {})", int(rtcGetDeviceError(nullptr)));
+    rtcSetDeviceErrorFunction(d, &onEmbreeError, nullptr);
+    return d;
+  }();
+  return device;
+}
+
 }  // namespace
 
 struct Accel::Impl {
@@ -249,22 +276,11 @@ struct Accel::Impl {
   std::vector<std::unique_ptr<PatchGeometry>> patchGeometries;  // stable user pointers
   std::vector<std::unique_ptr<BezierGeometry>> bezierGeometries;
 
-  // Embree reports errors through this callback from inside its C API; throwing across it is
-  // not allowed, so the message is kept and thrown by check() once the call has returned.
-  std::mutex errorMutex;
-  std::string error;
-
-  static void onError(void* user, RTCError code, const char* message) {
-    auto* self = static_cast<Impl*>(user);
-    std::lock_guard lock(self->errorMutex);
-    if (self->error.empty())
-      self->error = fmt::format("Embree error {}: {}", int(code), message ? message : "");
-  }
-  void check(const char* what) {
-    std::lock_guard lock(errorMutex);
-    if (!error.empty()) {
-      std::string message = std::move(error);
-      error.clear();
+  // Throws this thread's pending Embree error, naming the step.
+  static void check(const char* what) {
+    if (!embreeError.empty()) {
+      std::string message = std::move(embreeError);
+      embreeError.clear();
       fail("{}: {}", what, message);
     }
   }
@@ -293,10 +309,8 @@ struct Accel::Impl {
 
 Accel::Accel(const Options& options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
-  impl_->device = rtcNewDevice(nullptr);
-  if (!impl_->device)
-    fail("creating the Embree device failed (error {})", int(rtcGetDeviceError(nullptr)));
-  rtcSetDeviceErrorFunction(impl_->device, &Impl::onError, impl_.get());
+  impl_->device = sharedDevice();
+  embreeError.clear();  // from an earlier structure's call on this thread, already reported
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneFlags(
       impl_->scene,
@@ -307,7 +321,6 @@ Accel::Accel(const Options& options) : impl_(std::make_unique<Impl>()) {
 
 Accel::~Accel() {
   if (impl_->scene) rtcReleaseScene(impl_->scene);
-  if (impl_->device) rtcReleaseDevice(impl_->device);
 }
 
 uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
@@ -393,7 +406,14 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
 }
 
 void Accel::commit() {
+  // Embree builds on its own (TBB) threads and calls the bounds functions there: for
+  // ThreadSanitizer, everything before this call is ordered before them, and they before what
+  // follows it (the user geometry's address and its margin's are the two edges' tokens).
+  for (const auto& g : impl_->patchGeometries) releaseEdge(g.get());
+  for (const auto& g : impl_->bezierGeometries) releaseEdge(g.get());
   rtcCommitScene(impl_->scene);
+  for (const auto& g : impl_->patchGeometries) acquireEdge(&g->margin);
+  for (const auto& g : impl_->bezierGeometries) acquireEdge(&g->margin);
   impl_->check("building the acceleration structure");
   impl_->committed = true;
 }

@@ -1,9 +1,8 @@
 #include "quadtri/mesh/topology.h"
 
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
-
 #include <algorithm>
+
+#include "quadtri/math/parallel.h"
 
 namespace quadtri {
 
@@ -18,14 +17,14 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
     bool operator<(const Half& o) const { return key != o.key ? key < o.key : h < o.h; }
   };
   std::vector<Half> sorted(halves);
-  tbb::parallel_for(size_t(0), triangles, [&](size_t t) {
+  parallelFor(size_t(0), triangles, [&](size_t t) {
     for (int k = 0; k < 3; ++k) {
       uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
       if (a > b) std::swap(a, b);
       sorted[3 * t + k] = Half{(uint64_t(a) << 32) | b, uint32_t(3 * t + k)};
     }
   });
-  tbb::parallel_sort(sorted.begin(), sorted.end());
+  parallelSort(sorted.begin(), sorted.end());
   // leader[h]: the first half-edge (least h) of h's edge. Edges are numbered by their leader.
   std::vector<uint32_t> leader(halves);
   std::vector<uint32_t> groupSize(halves, 0);

@@ -1,12 +1,12 @@
 // load_mesh, save_mesh, shape, Surface, model_names, shape_names.
 #include <pybind11/stl.h>
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 
 #include "arrays.h"
 #include "bindings.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/mesh/normals.h"
 #include "quadtri/mesh/shapes.h"
@@ -66,7 +66,7 @@ void forEachPoint(const FloatArray& points, Out* out, F f) {
   const double* p = points.data();
   const size_t n = size_t(points.shape(0));
   LibraryCall call;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
+  parallelForRange(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i)
       f(Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]), out, i);
   });

@@ -1,6 +1,5 @@
 // RayScene: models in the renderer's Embree scene, intersected with many rays at once.
 #include <pybind11/stl.h>
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <limits>
@@ -8,6 +7,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/render/render_scene.h"
 
 namespace quadtri::python {
@@ -93,12 +93,12 @@ Rays raysOf(py::handle origins, py::handle directions, double tnear, double tfar
 template <typename F>
 void forEachRay(size_t count, F f) {
   LibraryCall call;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 256),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      FloatModeGuard keep;
-                      enableFlushToZero();
-                      for (size_t i = range.begin(); i != range.end(); ++i) f(i);
-                    });
+  parallelForRange(tbb::blocked_range<size_t>(0, count, 256),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     FloatModeGuard keep;
+                     enableFlushToZero();
+                     for (size_t i = range.begin(); i != range.end(); ++i) f(i);
+                   });
 }
 
 }  // namespace

@@ -1,7 +1,5 @@
 #include "quadtri/render/renderer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <chrono>
@@ -13,6 +11,7 @@
 #include <thread>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/render/render_scene.h"
 
 namespace quadtri {
@@ -236,7 +235,7 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(
+    parallelForRange(
         tbb::blocked_range<size_t>(0, tileCount, 1),
         [&](const tbb::blocked_range<size_t>& range) {
           enableFlushToZero();

@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
@@ -18,6 +16,7 @@
 #include "quadtri/io/atomic_file.h"
 #include "quadtri/io/csv.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/mesh/topology.h"
 
@@ -206,7 +205,7 @@ std::vector<StudyRow> runStudy(const std::vector<StudyMesh>& meshes, const Study
   };
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(
+    parallelForRange(
         tbb::blocked_range<size_t>(0, chosen.size(), 1),
         [&](const tbb::blocked_range<size_t>& range) {
           for (size_t i = range.begin(); i != range.end(); ++i) {

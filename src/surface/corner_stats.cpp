@@ -1,12 +1,11 @@
 #include "quadtri/surface/corner_stats.h"
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 #include <array>
 #include <cmath>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/edge_curves.h"
 
@@ -66,7 +65,7 @@ std::optional<double> CornerStats::consistentFlipRate() const {
 CornerStats cornerStats(const SurfaceModel& model) {
   const TriangleMesh& mesh = model.mesh();
   const EdgeEnds ends = edgeEnds(mesh);
-  return tbb::parallel_reduce(
+  return parallelReduce(
       tbb::blocked_range<size_t>(0, model.patchCount()), CornerStats(),
       [&](const tbb::blocked_range<size_t>& range, CornerStats s) {
         for (size_t t = range.begin(); t != range.end(); ++t) {

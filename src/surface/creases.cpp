@@ -1,11 +1,9 @@
 #include "quadtri/surface/creases.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <Eigen/QR>
 #include <cmath>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/edge_curves.h"
 
@@ -66,7 +64,7 @@ EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
   if (!mesh.hasNormals()) return out;
   // Each edge writes only its own sides' slots: edges are independent, and the result does not
   // depend on the thread count. The normals' buffers are reused within a block of edges.
-  tbb::parallel_for(
+  parallelForRange(
       tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
       [&](const tbb::blocked_range<size_t>& range) {
         std::vector<Vec3> na, nb;

@@ -1,10 +1,8 @@
 #include "quadtri/surface/edge_curves.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <Eigen/QR>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/creases.h"
 
@@ -117,10 +115,10 @@ std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
   std::vector<uint8_t> gaveUpEdges(gaveUpPatches ? topo.edges.size() : 0, 0);
   // Each edge writes only its own sides' slots, so edges are independent and the result does
   // not depend on the thread count.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096), [&](const tbb::
-                                                                                    blocked_range<
-                                                                                        size_t>&
-                                                                                        range) {
+  parallelForRange(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096), [&](const tbb::
+                                                                                   blocked_range<
+                                                                                       size_t>&
+                                                                                       range) {
     for (size_t e = range.begin(); e != range.end(); ++e) {
       const Edge& edge = topo.edges[e];
       const auto [t0, k0] = edge.sides.front();

@@ -1,10 +1,8 @@
 #include "quadtri/surface/g1_model.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/local_patches.h"
 
@@ -145,22 +143,22 @@ G1Model::G1Model(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::m
   const EdgeEnds ends = edgeEnds(m);
   pieces_.resize(3 * m.triangleCount());
   std::vector<uint8_t> fallbacks(m.triangleCount(), 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, m.triangleCount(), 1024),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      for (size_t t = range.begin(); t != range.end(); ++t) {
-                        const LocalTriangle tri = localTriangle(m, t);
-                        bool gaveUp = false;
-                        const auto pieces = g1Pieces(tri.p, tri.n, &ends[t], &gaveUp);
-                        const double orientation = patchOrientation(m, t);
-                        for (int k = 0; k < 3; ++k) {
-                          BezierTriangle& s = pieces_[3 * t + size_t(k)];
-                          s = pieces[size_t(k)];
-                          s.orientation = orientation;
-                          s.triangle = uint32_t(t);
-                        }
-                        fallbacks[t] = gaveUp;
-                      }
-                    });
+  parallelForRange(tbb::blocked_range<size_t>(0, m.triangleCount(), 1024),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     for (size_t t = range.begin(); t != range.end(); ++t) {
+                       const LocalTriangle tri = localTriangle(m, t);
+                       bool gaveUp = false;
+                       const auto pieces = g1Pieces(tri.p, tri.n, &ends[t], &gaveUp);
+                       const double orientation = patchOrientation(m, t);
+                       for (int k = 0; k < 3; ++k) {
+                         BezierTriangle& s = pieces_[3 * t + size_t(k)];
+                         s = pieces[size_t(k)];
+                         s.orientation = orientation;
+                         s.triangle = uint32_t(t);
+                       }
+                       fallbacks[t] = gaveUp;
+                     }
+                   });
   setFallbacks(std::move(fallbacks));
 }
 

@@ -1,9 +1,8 @@
 #include "quadtri/surface/implicit_model.h"
 
-#include <tbb/parallel_for.h>
-
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/surface/implicit_fit.h"
 #include "quadtri/surface/local_patches.h"
 
@@ -49,7 +48,7 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
   parametric_.resize(n);
   parametricOrientation_.resize(n);
   patches_.resize(n);
-  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+  parallelFor(size_t(0), n, [&](size_t t) {
     const QuadraticPatch fp = quadraticPatch(m, controlPoints, t);
     const double orient = patchOrientation(m, t);
     parametric_[t] = fp;

@@ -1,11 +1,9 @@
 #include "quadtri/surface/robust_implicit_model.h"
 
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
-
 #include <array>
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/robust_pencil.h"
 #include "quadtri/surface/robust_quadric_fit.h"
@@ -250,7 +248,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
   // The grid as one sorted array of (grid cell, triangle) entries: each cell's triangles are a
   // run of it, in increasing order.
   std::vector<size_t> first(n + 1, 0);
-  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+  parallelFor(size_t(0), n, [&](size_t t) {
     if (boxes[t].empty()) return;
     const Key lo = cellOf(boxes[t].lo), hi = cellOf(boxes[t].hi);
     const int64_t size = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
@@ -267,7 +265,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
     bool operator<(const Entry& o) const { return key != o.key ? key < o.key : t < o.t; }
   };
   std::vector<Entry> grid(first[n]);
-  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+  parallelFor(size_t(0), n, [&](size_t t) {
     if (first[t + 1] == first[t]) return;
     const Key lo = cellOf(boxes[t].lo), hi = cellOf(boxes[t].hi);
     size_t i = first[t];
@@ -275,7 +273,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
         for (int64_t z = lo[2]; z <= hi[2]; ++z) grid[i++] = Entry{{x, y, z}, uint32_t(t)};
   });
-  tbb::parallel_sort(grid.begin(), grid.end());
+  parallelSort(grid.begin(), grid.end());
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (size_t begin = 0; begin < grid.size();) {
     size_t end = begin + 1;
@@ -299,7 +297,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
     begin = end;
   }
   std::vector<char> hit(pairs.size(), 0);
-  tbb::parallel_for(size_t(0), pairs.size(), [&](size_t i) {
+  parallelFor(size_t(0), pairs.size(), [&](size_t i) {
     const auto [a, b] = pairs[i];
     const double tolerance = 1e-9 * std::min(mesh.meanEdgeLength(a), mesh.meanEdgeLength(b));
     // Triangles that cross each other (or nearly) keep crossing whatever their patches do.
@@ -321,15 +319,14 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   const TriangleMesh& m = mesh();
   const MeshTopology topo(m);
   std::vector<SharedEdge> edges(topo.edges.size());
-  tbb::parallel_for(size_t(0), edges.size(),
-                    [&](size_t i) { edges[i] = sharedEdge(m, topo.edges[i]); });
+  parallelFor(size_t(0), edges.size(), [&](size_t i) { edges[i] = sharedEdge(m, topo.edges[i]); });
   const std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m, topo);
 
   patches_.resize(m.triangleCount());
   frames_.resize(m.triangleCount());
   std::vector<QuadricCoeffs> pencils(m.triangleCount());
   std::vector<uint8_t> fallbacks(m.triangleCount(), 0);
-  tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+  parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     CornerData data;
     for (int k = 0; k < 3; ++k) {
       data.position[k] = m.corner(t, k);
@@ -355,7 +352,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   std::vector<double> cornerErrors(m.triangleCount());
   for (size_t t = 0; t < m.triangleCount(); ++t) cornerErrors[t] = frames_[t].cornerNormalErrorDeg;
   agreeAcrossEdges(m, topo, arcMidpoints, controlPoints, pencils, cornerErrors, patches_);
-  tbb::parallel_for(size_t(0), edges.size(), [&](size_t i) {
+  parallelFor(size_t(0), edges.size(), [&](size_t i) {
     const Edge& edge = topo.edges[i];
     // Data from a quadric only (both fits corner-exact): there the plane through the crossing
     // makes the neighbours meet exactly. On generic data it would tilt planes by up to 30° for
@@ -371,7 +368,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   });
   const std::vector<double> sides = faceSides(m, topo);
   std::vector<ConvexCell> cells(m.triangleCount());
-  tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+  parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
     QuadricPatch& patch = patches_[t];
     frame.parametric = quadraticPatch(m, controlPoints, t);
@@ -398,12 +395,12 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   // thinner than its triangles: a sheet of one side would otherwise reach through the other's):
   // each round halves the reach of the cells that do, and chooses their patches again.
   for (int round = 0; round < kOverlapRounds; ++round) {
-    tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+    parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
       if (redo[t]) choosePatch(t, fitted[t], pencils[t], reach[t], cells[t]);
     });
     if (flatCores.empty()) {
       flatCores.resize(m.triangleCount());
-      tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+      parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
         if (cells[t].empty()) return;
         const QuadricPatch& patch = patches_[t];
         const Vec3& n = frames_[t].faceNormal;
@@ -418,7 +415,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     // The cores: each cell cut down to the heights of its patch and of the region between
     // the patch and the triangle (what the patch and its bridges can reach).
     std::vector<ConvexCell> cores(m.triangleCount());
-    tbb::parallel_for(size_t(0), m.triangleCount(), [&](size_t t) {
+    parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
       if (cells[t].empty()) return;
       const Frame& frame = frames_[t];
       const QuadricPatch& patch = patches_[t];
@@ -655,7 +652,7 @@ void RobustImplicitModel::addBridges(const MeshTopology& topo,
   const TriangleMesh& m = mesh();
   std::vector<QuadricPatch> bridges(topo.edges.size());
   std::vector<char> needed(topo.edges.size(), 0);
-  tbb::parallel_for(size_t(0), topo.edges.size(), [&](size_t i) {
+  parallelFor(size_t(0), topo.edges.size(), [&](size_t i) {
     const Edge& edge = topo.edges[i];
     if (edge.sides.size() != 2) return;
     const auto [ta, ka] = edge.sides[0];

@@ -1,10 +1,10 @@
 #include "quadtri/surface/robust_pencil.h"
 
-#include <tbb/parallel_for.h>
-
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+
+#include "quadtri/math/parallel.h"
 
 namespace quadtri {
 namespace {
@@ -29,7 +29,7 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
   constexpr size_t kBlock = 16384;
   const size_t blocks = (a.size() + kBlock - 1) / kBlock;
   std::vector<double> partial(blocks, 0.0);
-  tbb::parallel_for(size_t(0), blocks, [&](size_t i) {
+  parallelFor(size_t(0), blocks, [&](size_t i) {
     double sum = 0.0;
     for (size_t j = i * kBlock; j < std::min(a.size(), (i + 1) * kBlock); ++j) sum += a[j] * b[j];
     partial[i] = sum;
@@ -65,7 +65,7 @@ bool conjugateGradients(const Multiply& multiply, const std::vector<double>& rhs
     const double pq = dot(p, q);
     if (!(pq > 0.0) || !std::isfinite(pq)) return false;
     const double alpha = rz / pq;
-    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    parallelFor(size_t(0), n, [&](size_t i) {
       x[i] += alpha * p[i];
       r[i] -= alpha * q[i];
       z[i] = r[i] / diagonal[i];
@@ -74,7 +74,7 @@ bool conjugateGradients(const Multiply& multiply, const std::vector<double>& rhs
     const double rzNext = dot(r, z);
     const double beta = rzNext / rz;
     rz = rzNext;
-    tbb::parallel_for(size_t(0), n, [&](size_t i) { p[i] = z[i] + beta * p[i]; });
+    parallelFor(size_t(0), n, [&](size_t i) { p[i] = z[i] + beta * p[i]; });
   }
   return false;
 }
@@ -137,7 +137,7 @@ void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
   static constexpr double kSamples[7][2] = {{1. / 3, 1. / 3}, {0.5, 0},         {0.5, 0.5},
                                             {0, 0.5},         {1. / 6, 1. / 6}, {2. / 3, 1. / 6},
                                             {1. / 6, 2. / 3}};
-  tbb::parallel_for(size_t(0), count, [&](size_t t) {
+  parallelFor(size_t(0), count, [&](size_t t) {
     for (int k = 0; k < 3; ++k) {
       const Vec3& m = arcMidpoints[topo.edgeOf[t][k]];
       const double g = quadricGradient(patches[t].q, m).norm();
@@ -177,7 +177,7 @@ void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
   std::vector<double> rhs(count, 0.0), diagonal(count, 0.0);
   std::vector<std::array<double, 3>> offDiagonal(count);
   std::vector<std::array<uint32_t, 3>> neighbour(count);
-  tbb::parallel_for(size_t(0), count, [&](size_t t) {
+  parallelFor(size_t(0), count, [&](size_t t) {
     double b = 0.0, d = held[t];
     for (int k = 0; k < 3; ++k) {
       offDiagonal[t][k] = 0.0;
@@ -202,7 +202,7 @@ void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
   });
   // y = N x, row by row.
   const auto multiply = [&](const std::vector<double>& x, std::vector<double>& y) {
-    tbb::parallel_for(size_t(0), count, [&](size_t t) {
+    parallelFor(size_t(0), count, [&](size_t t) {
       double sum = diagonal[t] * x[t];
       for (int k = 0; k < 3; ++k) sum += offDiagonal[t][k] * x[neighbour[t][k]];
       y[t] = sum;
@@ -212,7 +212,7 @@ void agreeAcrossEdges(const TriangleMesh& mesh, const MeshTopology& topo,
   if (!conjugateGradients(multiply, rhs, diagonal, mu))
     mu = directSolve(topo, change, distance, held, count);
   if (mu.empty()) return;
-  tbb::parallel_for(size_t(0), count, [&](size_t t) {
+  parallelFor(size_t(0), count, [&](size_t t) {
     QuadricCoeffs& q = patches[t].q;
     double norm2 = 0.0;
     for (int i = 0; i < 10; ++i) {

@@ -16,7 +16,6 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -28,6 +27,7 @@
 #include "quadtri/geometry/accel.h"
 #include "quadtri/geometry/model_geometry.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/robust_implicit_model.h"
@@ -252,7 +252,7 @@ int main(int argc, char** argv) {
   std::atomic<size_t> stray{0}, nonAlternating{0};
   double worstStray = 0;
   size_t worstStrayPrim = 0;
-  tbb::parallel_for(size_t(0), lines, [&](size_t i) {
+  parallelFor(size_t(0), lines, [&](size_t i) {
     enableFlushToZero();
     Pcg32 rng(seed, i);
     const Vec3 u(rng.nextDouble(), rng.nextDouble(), rng.nextDouble());
