@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -161,6 +162,23 @@ void checkBinaryBody(std::ifstream& in, uint64_t bodyBytes, const std::vector<El
   }
 }
 
+// Whether an ASCII word is one whole value of type `t`, as Assimp must read it to stay in step
+// with the line: an integer (sign allowed) for integer types, any decimal number for float and
+// double. Assimp does not consume a word it cannot read, so one such word shifts every value
+// after it, list counts included (fuzz_ply: a ",2.3" made a list count of a coordinate).
+bool asciiValue(std::string_view word, const PlyType& t) {
+  if (word.size() > 1 && word[0] == '+') word.remove_prefix(1);
+  const char* end = word.data() + word.size();
+  if (t.isInteger) {
+    int64_t i = 0;
+    const auto [ptr, ec] = std::from_chars(word.data(), end, i);
+    return ptr == end && (ec == std::errc() || ec == std::errc::result_out_of_range);
+  }
+  double d = 0.0;
+  const auto [ptr, ec] = std::from_chars(word.data(), end, d);
+  return ptr == end && (ec == std::errc() || ec == std::errc::result_out_of_range);
+}
+
 // ASCII: one element per line (as Assimp reads them), each line holding a value per scalar
 // property and, per list, its count and that many values; blank lines are skipped, words past
 // the last property ignored and properties past the line's last word absent (as Assimp does).
@@ -184,6 +202,9 @@ void checkAsciiBody(std::ifstream& in, long lineNo, const std::vector<Element>& 
         // wrote a vertex list without values, assimp-testmodels' PLY/issue623.ply).
         if (k >= w.size()) break;
         if (!p.count) {
+          if (!asciiValue(w[k], *p.value))
+            fail("{}:{}: element '{}' {}: property '{}' is '{}', expected {}", name, lineNo, e.name,
+                 i, p.name, w[k], p.value->isInteger ? "an integer" : "a number");
           ++k;
           continue;
         }
@@ -193,6 +214,10 @@ void checkAsciiBody(std::ifstream& in, long lineNo, const std::vector<Element>& 
               "{}:{}: element '{}' {}: list '{}' has count '{}', expected an unsigned integer "
               "followed by that many values on the line",
               name, lineNo, e.name, i, p.name, w[k]);
+        for (size_t j = k + 1; j <= k + size_t(*n); ++j)
+          if (!asciiValue(w[j], *p.value))
+            fail("{}:{}: element '{}' {}: list '{}' holds '{}', expected {}", name, lineNo, e.name,
+                 i, p.name, w[j], p.value->isInteger ? "an integer" : "a number");
         k += 1 + size_t(*n);
       }
     }

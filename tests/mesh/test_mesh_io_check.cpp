@@ -182,6 +182,16 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
                                              plyHeader("binary_little_endian", "float") + little));
                  }),
                  {"float-count.ply:8: list 'vertex_indices' has count type 'float'"});
+  // A word Assimp cannot read shifts the values after it (a coordinate became a list count).
+  expectContains(refusal([&] { loadMesh(writeFile("comma.ply", ascii + "3 1 ,3 2\n")); }),
+                 {"comma.ply:15: element 'face' 1: list 'vertex_indices' holds ',3', expected an "
+                  "integer"});
+  expectContains(
+      refusal([&] {
+        loadMesh(writeFile("coordinate.ply", plyHeader("ascii", "uchar") + "0 0 0\n1 ,0 0\n" +
+                                                 std::string(20, '\n')));
+      }),
+      {"coordinate.ply:11: element 'vertex' 1: property 'y' is ',0', expected a number"});
   // A line among an element's properties that is none: Assimp would read another layout.
   expectContains(
       refusal([&] {
