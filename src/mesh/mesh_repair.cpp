@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "quadtri/mesh/topology.h"
@@ -45,11 +47,80 @@ void keepTriangles(TriangleMesh& mesh, const std::vector<char>& keep) {
   if (mesh.hasNormals()) mesh.normalIndices.resize(out);
 }
 
+// Re-winds the triangles of each connected part whose winding is inconsistent: two triangles
+// that share an edge of exactly two sides must run along it in opposite directions. A part is
+// grown across such edges from its first triangle, each triangle labelled as keeping or
+// flipping its winding relative to that first one. When both labels occur, the part takes the
+// winding of most of its area; a part whose labels contradict each other (a Möbius strip) is
+// left as it is and counted. Flipping swaps corners 1 and 2, so a triangle keeps its first
+// corner. Only for meshes without normals (they are computed from the faces afterwards): where
+// the file has normals they say which side is out, and a triangle facing away from them is the
+// mesh's inconsistent corner, which analyze counts. Returns {flipped, non-orientable parts}.
+std::pair<size_t, size_t> orientParts(TriangleMesh& mesh, const MeshTopology& topo) {
+  if (mesh.hasNormals()) return {0, 0};
+  const size_t n = mesh.triangles.size();
+  constexpr uint8_t kUnseen = 2;
+  std::vector<uint8_t> flip(n, kUnseen);
+  std::vector<uint32_t> part, stack;
+  size_t flipped = 0, nonOrientable = 0;
+  for (size_t seed = 0; seed < n; ++seed) {
+    if (flip[seed] != kUnseen) continue;
+    part.clear();
+    stack.assign(1, uint32_t(seed));
+    flip[seed] = 0;
+    bool orientable = true;
+    while (!stack.empty()) {
+      const uint32_t t = stack.back();
+      stack.pop_back();
+      part.push_back(t);
+      for (int k = 0; k < 3; ++k) {
+        const Edge& e = topo.edges[topo.edgeOf[t][k]];
+        if (e.sides.size() != 2) continue;
+        const EdgeSide other =
+            e.sides[0].first == t && e.sides[0].second == k ? e.sides[1] : e.sides[0];
+        const uint32_t u = other.first;
+        if (u == t) continue;
+        // Consistent: u runs from t's edge end to its start.
+        const bool sameDirection = mesh.triangles[t][k] == mesh.triangles[u][other.second];
+        const uint8_t want = uint8_t(flip[t] ^ (sameDirection ? 1 : 0));
+        if (flip[u] == kUnseen) {
+          flip[u] = want;
+          stack.push_back(u);
+        } else if (flip[u] != want) {
+          orientable = false;
+        }
+      }
+    }
+    double keepVote = 0.0, flipVote = 0.0;
+    bool mixed = false;
+    for (uint32_t t : part) mixed |= flip[t] != flip[part[0]];
+    if (!orientable) {
+      ++nonOrientable;
+      for (uint32_t t : part) flip[t] = 0;
+      continue;
+    }
+    if (!mixed) {
+      for (uint32_t t : part) flip[t] = 0;
+      continue;
+    }
+    for (uint32_t t : part)  // area ×2 of the triangles that keep, and that flip, their winding
+      (flip[t] ? flipVote : keepVote) += mesh.faceCross(t).norm();
+    const bool invert = flipVote > keepVote;
+    for (uint32_t t : part) flip[t] = uint8_t(flip[t] ^ (invert ? 1 : 0));
+    for (uint32_t t : part) {
+      if (!flip[t]) continue;
+      std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+      ++flipped;
+    }
+  }
+  return {flipped, nonOrientable};
+}
+
 }  // namespace
 
 bool MeshRepairs::any() const {
-  return replacedNormals || isolatedVertices || collapsedFaces || duplicateFaces || zeroAreaFaces ||
-         nonManifoldEdges;
+  return replacedNormals || isolatedVertices || collapsedFaces || duplicateFaces ||
+         reorientedFaces || zeroAreaFaces || nonManifoldEdges || nonOrientableParts;
 }
 
 std::string MeshRepairs::summary() const {
@@ -70,6 +141,9 @@ std::string MeshRepairs::summary() const {
     kept.push_back(count(nonManifoldEdges, "edge with three or more triangles",
                          "edges with three or more triangles") +
                    " (crack_rate is undefined)");
+  if (nonOrientableParts)
+    kept.push_back(count(nonOrientableParts, "non-orientable part (as wound)",
+                         "non-orientable parts (as wound)"));
   std::string s;
   auto list = [](const std::vector<std::string>& items) {
     if (items.size() == 1) return items[0];
@@ -81,6 +155,9 @@ std::string MeshRepairs::summary() const {
     if (replacedNormals) s = "replaced " + fixed[0];
     if (!removed.empty()) s += (s.empty() ? "" : "; ") + ("removed " + list(removed));
   }
+  if (reorientedFaces)
+    s += (s.empty() ? "" : "; ") + ("re-wound " + count(reorientedFaces, "triangle", "triangles") +
+                                    " to agree with their neighbours");
   if (!kept.empty()) s += (s.empty() ? "" : "; ") + ("kept " + list(kept));
   return s;
 }
@@ -132,13 +209,19 @@ MeshRepairs repairMesh(TriangleMesh& mesh) {
       for (uint32_t& v : f) v = remap[v];
   }
 
+  // One adjacency for both: re-winding permutes triangles' local edges but not which
+  // triangles meet at an edge, so the non-manifold count holds afterwards too.
+  const MeshTopology topo(mesh);
+  std::tie(did.reorientedFaces, did.nonOrientableParts) = orientParts(mesh, topo);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) did.zeroAreaFaces += zeroArea(mesh, t);
-  did.nonManifoldEdges = MeshTopology(mesh).nonManifoldEdgeCount();
+  did.nonManifoldEdges = topo.nonManifoldEdgeCount();
 
   MeshRepairs& total = mesh.repairs;
   total.isolatedVertices += did.isolatedVertices;
   total.collapsedFaces += did.collapsedFaces;
   total.duplicateFaces += did.duplicateFaces;
+  total.reorientedFaces += did.reorientedFaces;
+  total.nonOrientableParts = did.nonOrientableParts;
   total.zeroAreaFaces = did.zeroAreaFaces;
   total.nonManifoldEdges = did.nonManifoldEdges;
   return did;

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/math/error.h"
@@ -95,6 +97,95 @@ TEST_F(MeshRepair, CleanMeshesAreLeftBitwiseUnchanged) {
     EXPECT_EQ(mesh.triangles, before.triangles) << spec;
     EXPECT_FALSE(repairWarning(mesh, spec)) << spec;
   }
+}
+
+// An OBJ of the mesh's positions and faces, without normals, with the faces whose index is in
+// `flipped` written in the other winding.
+std::string objOf(const TriangleMesh& mesh, const std::vector<size_t>& flipped) {
+  std::string text;
+  for (const Vec3& p : mesh.positions)
+    text += "v " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+            std::to_string(p.z()) + "\n";
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    Tri f = mesh.triangles[t];
+    if (std::find(flipped.begin(), flipped.end(), t) != flipped.end()) std::swap(f[1], f[2]);
+    text += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " +
+            std::to_string(f[2] + 1) + "\n";
+  }
+  return text;
+}
+
+// Triangles whose face normal points away from the origin (the icosphere's outside).
+size_t outward(const TriangleMesh& mesh) {
+  size_t n = 0;
+  for (size_t t = 0; t < mesh.triangleCount(); ++t)
+    n += mesh.faceCross(t).dot(mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) > 0;
+  return n;
+}
+
+TEST_F(MeshRepair, InconsistentWindingIsReWoundToMostOfItsPartsArea) {
+  const TriangleMesh sphere = parseBuiltinSpec("icosphere:2")->mesh;  // 320 triangles, outward
+  const size_t n = sphere.triangleCount();
+  ASSERT_EQ(outward(sphere), n);
+  std::vector<size_t> third, twoThirds;
+  for (size_t t = 0; t < n; ++t) (t % 3 == 0 ? third : twoThirds).push_back(t);
+  // A third wound inward: they are re-wound outward, the rest untouched.
+  const TriangleMesh a = loadMesh(write("third.obj", objOf(sphere, third)));
+  EXPECT_EQ(a.repairs.reorientedFaces, third.size());
+  EXPECT_EQ(outward(a), n);
+  // Two thirds inward: the part takes the inward winding of most of its area, consistently.
+  const TriangleMesh b = loadMesh(write("two-thirds.obj", objOf(sphere, twoThirds)));
+  EXPECT_EQ(b.repairs.reorientedFaces, third.size());
+  EXPECT_EQ(outward(b), 0u);
+  // Either way the normals are computed from the re-wound faces: every corner is consistent.
+  for (const TriangleMesh* m : {&a, &b})
+    for (size_t t = 0; t < m->triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) EXPECT_GT(m->faceCross(t).dot(m->cornerNormal(t, k)), 0.0);
+  const std::optional<std::string> w = repairWarning(a, "third.obj");
+  ASSERT_TRUE(w);
+  EXPECT_EQ(*w, "third.obj: re-wound 107 triangles to agree with their neighbours");
+  // Consistently wound, whichever way: nothing to re-wind.
+  const TriangleMesh c = loadMesh(write("all.obj", objOf(sphere, [&] {
+                                          std::vector<size_t> all(n);
+                                          for (size_t t = 0; t < n; ++t) all[t] = t;
+                                          return all;
+                                        }())));
+  EXPECT_EQ(c.repairs.reorientedFaces, 0u);
+  EXPECT_EQ(outward(c), 0u);
+}
+
+TEST_F(MeshRepair, FileNormalsKeepTheWindingAndAMobiusStripIsKeptAndReported) {
+  // A square of two triangles wound against each other, with +z normals: the normals say which
+  // side is out, so the second triangle stays an inconsistent corner for analyze to count.
+  const TriangleMesh square = loadMesh(write("square.obj",
+                                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+                                             "f 1//1 2//1 3//1\nf 1//1 4//1 3//1\n"));
+  EXPECT_EQ(square.repairs.reorientedFaces, 0u);
+  EXPECT_EQ(square.triangles[1], (Tri{0, 3, 2}));
+  // A Möbius strip of 12 quads: no winding is consistent, so it is left as wound.
+  std::string strip;
+  const int quads = 12;
+  for (int i = 0; i < quads; ++i) {
+    const double a = 2.0 * M_PI * i / quads, h = 0.3 * std::cos(a / 2), r = 0.3 * std::sin(a / 2);
+    strip += "v " + std::to_string((1 + h) * std::cos(a)) + " " +
+             std::to_string((1 + h) * std::sin(a)) + " " + std::to_string(r) + "\n";
+    strip += "v " + std::to_string((1 - h) * std::cos(a)) + " " +
+             std::to_string((1 - h) * std::sin(a)) + " " + std::to_string(-r) + "\n";
+  }
+  for (int i = 0; i < quads; ++i) {
+    // Vertices 2i+1, 2i+2 (1-based) across the strip; the last quad joins them crossed.
+    const int a0 = 2 * i + 1, a1 = 2 * i + 2;
+    const int b0 = i + 1 < quads ? a0 + 2 : 2, b1 = i + 1 < quads ? a1 + 2 : 1;
+    strip += "f " + std::to_string(a0) + " " + std::to_string(b0) + " " + std::to_string(b1) +
+             "\nf " + std::to_string(a0) + " " + std::to_string(b1) + " " + std::to_string(a1) +
+             "\n";
+  }
+  const TriangleMesh mobius = loadMesh(write("mobius.obj", strip));
+  EXPECT_EQ(mobius.repairs.nonOrientableParts, 1u);
+  EXPECT_EQ(mobius.repairs.reorientedFaces, 0u);
+  EXPECT_NE(mobius.repairs.summary().find("kept 1 non-orientable part (as wound)"),
+            std::string::npos)
+      << mobius.repairs.summary();
 }
 
 TEST_F(MeshRepair, OnlyCollapsedTrianglesIsAClearError) {

@@ -19,9 +19,11 @@ struct MeshRepairs {
   size_t isolatedVertices = 0;  ///< vertices no triangle uses, removed
   size_t collapsedFaces = 0;    ///< triangles naming one vertex twice (no area), removed
   size_t duplicateFaces = 0;    ///< the same three vertices as an earlier triangle, removed
+  size_t reorientedFaces = 0;   ///< re-wound to agree with the rest of their part
   // Kept, and reported.
-  size_t zeroAreaFaces = 0;     ///< three distinct collinear vertices: they still join neighbours
-  size_t nonManifoldEdges = 0;  ///< edges with three or more triangles
+  size_t zeroAreaFaces = 0;       ///< three distinct collinear vertices: they still join neighbours
+  size_t nonManifoldEdges = 0;    ///< edges with three or more triangles
+  size_t nonOrientableParts = 0;  ///< connected parts no winding makes consistent (Möbius)
 
   bool any() const;
   /// One sentence, "" when there is nothing to report, e.g. "removed 2 duplicate triangles and
@@ -32,9 +34,13 @@ struct MeshRepairs {
 /// Removes collapsed and duplicate triangles (the first of each set of three vertices stays,
 /// whatever its winding: a surface cannot be two patches at once; use a twosided BSDF for a
 /// sheet seen from both sides) and then the vertices no triangle uses, renumbering the rest in
-/// order; counts zero-area triangles and non-manifold edges, which stay. Adds to `mesh.repairs`
-/// and returns what this call did. Triangles keep their order otherwise, and a mesh without
-/// defects is left bitwise unchanged.
+/// order. Then re-winds the triangles of each connected part whose winding is inconsistent
+/// (two triangles sharing a two-sided edge must run along it in opposite directions) to the
+/// winding of most of the part's area, swapping a flipped triangle's corners 1 and 2; only in a
+/// mesh without normals, since file normals say which side is out. Counts
+/// zero-area triangles, non-manifold edges and non-orientable parts, which stay. Adds to
+/// `mesh.repairs` and returns what this call did. Triangles keep their order otherwise, and a
+/// mesh without defects is left bitwise unchanged.
 MeshRepairs repairMesh(TriangleMesh& mesh);
 
 /// "WHAT: removed …; kept …" when the loader repaired or kept a defect of `mesh`, for the
