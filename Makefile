@@ -31,10 +31,12 @@ sanitize: setup
 
 # libFuzzer harnesses (README "Reliability"), each run for FUZZ_SECONDS, JOBS at a time, in the
 # sanitizer build (built by `make sanitize` or here).
+# FUZZ_SEED=N makes the run reproducible (a fixed seed and input count per harness): CI's.
 FUZZ_SECONDS ?= 60
+FUZZ_SEED ?=
 fuzz: setup
 	@CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja $(SANITIZE_FLAGS) >/dev/null
-	@FUZZ_BUILD=build-asan JOBS=$(JOBS) ./scripts/fuzz.sh $(FUZZ_SECONDS)
+	@FUZZ_BUILD=build-asan JOBS=$(JOBS) FUZZ_SEED=$(FUZZ_SEED) ./scripts/fuzz.sh $(FUZZ_SECONDS)
 
 # ThreadSanitizer (clang): every test of the unit-test binary, the CLI's and the soak's, with
 # the parallel loops on std::threads it can see (math/parallel.h). TSAN_TESTS is a ctest -R

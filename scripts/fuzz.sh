@@ -11,6 +11,7 @@
 #
 #   scripts/fuzz.sh [SECONDS] [NAME...]      NAME: obj ply off stl scene_xml shape_spec cli_text
 #                                            render_state (default: all)
+#   FUZZ_SEED=1 scripts/fuzz.sh 60           CI's reproducible run (see ci_runs below)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -28,6 +29,24 @@ if ! grep -qs '^QUADTRI_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
 fi
 cmake --build "$build" -j "$jobs" --target "${names[@]/#/fuzz_}"
 
+# FUZZ_SEED=N: a reproducible run, as CI's. libFuzzer starts from seed N and stops after a fixed
+# number of inputs per harness (below: each takes 20 to 30 s here, two at a time on 2 cores),
+# SECONDS remaining only a cap. The same binary then explores the same inputs on any
+# machine, so a finding in CI is one this script finds here, and a run cut short by the cap
+# explores a prefix of them.
+ci_runs() {
+  case "$1" in
+    stl) echo 10000 ;;
+    shape_spec) echo 25000 ;;
+    obj) echo 12000 ;;
+    ply) echo 100000 ;;
+    off) echo 100000 ;;
+    render_state) echo 150000 ;;
+    scene_xml) echo 300000 ;;
+    cli_text) echo 1000000 ;;
+  esac
+}
+
 assimp=/usr/share/assimp/models
 seeds() {  # extra seed folders for a harness
   case "$1" in
@@ -44,12 +63,16 @@ run() {  # one harness; its log holds libFuzzer's final statistics
   local name=$1 corpus="$build/corpus/$1" artifacts="$build/artifacts/$1" extra=()
   mkdir -p "$corpus" "$artifacts"
   for d in $(seeds "$name"); do [ -d "$d" ] && extra+=("$d"); done
+  if [ -n "${FUZZ_SEED:-}" ]; then
+    extra+=("-seed=$FUZZ_SEED" "-runs=$(ci_runs "$name")")
+    rm -rf "$corpus" && mkdir -p "$corpus"  # the same start on every machine
+  fi
   # -rss_limit_mb: a harness may use what --max-memory allows it (256 MiB) and ASan's overhead.
   "$build/fuzz/fuzz_$name" "$corpus" "tests/fuzz-regressions/$name" "${extra[@]}" \
     -max_total_time="$seconds" -timeout=20 -rss_limit_mb=3072 -max_len=65536 \
     -print_final_stats=1 -artifact_prefix="$artifacts/" >"$build/fuzz-$name.log" 2>&1
 }
-echo "== ${#names[@]} harnesses for ${seconds}s each, $jobs at a time"
+echo "== ${#names[@]} harnesses for ${seconds}s each${FUZZ_SEED:+ at most (seed $FUZZ_SEED, a fixed input count each)}, $jobs at a time"
 declare -A pids
 status=0
 report() {  # waits for one harness and prints its result

@@ -194,6 +194,13 @@ void checkAsciiBody(std::ifstream& in, long lineNo, const std::vector<Element>& 
         ++lineNo;
         if (line.find('\0') != std::string::npos)
           fail("{}:{}: a NUL byte in an ASCII PLY file", name, lineNo);
+        // Separators are spaces and tabs, for Assimp as here (a trailing \r ends the line).
+        for (size_t j = 0; j < line.size(); ++j) {
+          const auto c = static_cast<unsigned char>(line[j]);
+          if ((c < 0x20 && c != '\t' && !(c == '\r' && j + 1 == line.size())) || c == 0x7f)
+            fail("{}:{}: control character 0x{:02x} in an ASCII PLY element, expected numbers",
+                 name, lineNo, c);
+        }
         w = words(line);
       } while (w.empty());
       size_t k = 0;
@@ -236,9 +243,16 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
     fail("{}:1: expected 'ply', the first line of a PLY file", name);
   bool ended = false;
   while (!ended && readHeaderLine(in, line, name, ++lineNo)) {
-    // The header is text; a NUL byte in it is no PLY header.
+    // The header is text; a NUL byte in it is no PLY header. Nor is another control character
+    // but a tab: Assimp separates words by spaces and tabs only and ends a line at \f or NUL,
+    // so "end_header\v..." ended the header here and not for Assimp, which then read on
+    // without end (fuzz_ply).
     if (line.find('\0') != std::string::npos)
       fail("{}:{}: a NUL byte in the PLY header", name, lineNo);
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+        fail("{}:{}: control character 0x{:02x} in the PLY header, expected text", name, lineNo,
+             static_cast<unsigned char>(c));
     const std::vector<std::string_view> w = words(line);
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (format.empty() && (w[0] == "element" || w[0] == "property"))

@@ -192,6 +192,15 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
                                                  std::string(20, '\n')));
       }),
       {"coordinate.ply:11: element 'vertex' 1: property 'y' is ',0', expected a number"});
+  // A vertical tab after end_header: Assimp would not see the header end (fuzz_ply: a hang).
+  expectContains(refusal([&] {
+                   inspectMeshFile(writeFile("vtab.ply",
+                                             "ply\nformat ascii 1.0\n"
+                                             "end_header\v0 0 0\n"));
+                 }),
+                 {"vtab.ply:3: control character 0x0b in the PLY header"});
+  expectContains(refusal([&] { loadMesh(writeFile("vtab-body.ply", ascii + "3 1\v3 2\n")); }),
+                 {"vtab-body.ply:15: control character 0x0b in an ASCII PLY element"});
   // A line among an element's properties that is none: Assimp would read another layout.
   expectContains(
       refusal([&] {
