@@ -1,0 +1,250 @@
+// quadric-implicit-robust, patch by patch (DESIGN §3.7): which quadric of a triangle's pencil
+// becomes its patch (the fit, a graph member, or the flat fallback), and the checks a
+// candidate must pass. The construction of the whole model, its bridges and its evaluation are
+// in robust_implicit_model.cpp.
+#include <algorithm>
+#include <cmath>
+
+#include "quadtri/surface/robust_implicit_model.h"
+#include "quadtri/surface/robust_pencil.h"
+#include "quadtri/surface/robust_quadric_fit.h"
+
+namespace quadtri {
+namespace {
+
+// Samples per edge of the lattice that sizes the slab and the box.
+constexpr int kBoundSamples = 12;
+
+// Blends of the corner normals towards the face normal tried before the flat plane.
+constexpr double kBlends[] = {0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.95};
+
+// The member q + λ·pencil whose quadratic form vanishes along n (a graph over the triangle's
+// plane); false where the pencil has no such member.
+bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
+  const auto alongNormal = [&n](const QuadricCoeffs& c) {
+    return c[0] * n.x() * n.x() + c[1] * n.y() * n.y() + c[2] * n.z() * n.z() +
+           c[3] * n.x() * n.y() + c[4] * n.x() * n.z() + c[5] * n.y() * n.z();
+  };
+  const double ap = alongNormal(pencil), aq = alongNormal(q);
+  if (!(std::abs(ap) > 0.0) || aq == 0.0) return false;
+  double norm2 = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    q[i] -= (aq / ap) * pencil[i];
+    norm2 += q[i] * q[i];
+  }
+  if (!(norm2 > 0.0) || !std::isfinite(norm2)) return false;
+  for (double& c : q) c /= std::sqrt(norm2);
+  return true;
+}
+
+// How far a patch may rise above or sink below its triangle, in units of the triangle's least
+// altitude (twice its area over its longest edge).
+constexpr double kMaxRise = 0.5;
+
+}  // namespace
+
+bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double reach,
+                                     ConvexCell& cell) {
+  const TriangleMesh& m = mesh();
+  Frame& frame = frames_[t];
+  QuadricPatch& patch = patches_[t];
+  const Vec3& n = frame.faceNormal;
+  double facing = 0.0;
+  for (int k = 0; k < 3; ++k) facing += quadricGradient(q, m.corner(t, k)).dot(n);
+  if (!(std::abs(facing) > 0.0) || !std::isfinite(facing)) return false;
+  patch.q = q;
+  patch.orientation = facing < 0.0 ? -1.0 : 1.0;
+  patch.facing = Vec3::Zero();
+  const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
+  patch.base << n, -n.dot(centre);
+  const double scale = m.meanEdgeLength(t);
+  const double tolerance = 1e-10 * (scale + centre.norm());
+
+  // Heights of the patch over its triangle, sampled.
+  double hmin = 0.0, hmax = 0.0;
+  for (int j = 0; j <= kBoundSamples; ++j)
+    for (int i = 0; i + j <= kBoundSamples; ++i) {
+      const Vec3 p = evaluate(t, double(i) / kBoundSamples, double(j) / kBoundSamples).position;
+      hmin = std::min(hmin, n.dot(p - centre));
+      hmax = std::max(hmax, n.dot(p - centre));
+    }
+  // No farther from the triangle than a share of its least altitude: fits to normals that no
+  // surface near the triangle has (averaged across a sharp edge, on a sliver) bulge far out,
+  // into other parts of the mesh.
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
+  const double altitude = m.faceCross(t).norm() / longest;
+  if (!(std::max(hmax, -hmin) <= kMaxRise * altitude)) return false;
+
+  // The slab around the sampled heights, as tight as the exact checks below allow (a larger
+  // cell only makes the gradient check harder): grown fourfold while the sheet leaves it.
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    const double slab = (0.05 * (hmax - hmin) + 1e-3 * scale) * std::pow(4.0, attempt);
+    const double lo = hmin - slab, hi = hmax + slab;
+    patch.planes[3] << n, -n.dot(centre) - lo;
+    patch.planes[4] << -n, n.dot(centre) + hi;
+    patch.planeCount = 5;
+    cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + 5}, tolerance);
+    if (cell.vertices.size() < 4) return false;
+    // One sheet, a graph over the triangle's plane: orientation·∇q·n is positive wherever the
+    // quadric vanishes in the cell. (Along a line parallel to n a quadric's two roots have
+    // opposite slopes, so each such line then meets it at most once.) orientation·∇q·n is
+    // linear in x: the part of the cell where it is at most a small margin is a convex cell,
+    // in which the quadric must have no zero.
+    double gmax = 0.0;
+    for (const Vec3& v : cell.vertices) gmax = std::max(gmax, quadricGradient(q, v).norm());
+    {
+      // orientation·(2Mx + g)·n <= margin, as a plane m·x + d >= 0.
+      Mat3 M;
+      M << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
+      const Vec3 slope = -patch.orientation * 2.0 * (M * n);
+      const double offset = -patch.orientation * Vec3(q[6], q[7], q[8]).dot(n) + 1e-3 * gmax;
+      bool folded = false;
+      if (slope.norm() > 1e-12 * gmax) {
+        std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + 5);
+        planes.push_back(Vec4(slope.x(), slope.y(), slope.z(), offset) / slope.norm());
+        const ConvexCell turned = makeConvexCell(planes, tolerance);
+        folded = !turned.empty() && !quadricBoundsInCell(q, turned).empty();
+      } else {
+        folded = !(offset < 0.0);  // orientation·∇q·n is constant: it must exceed the margin
+      }
+      if (folded) return false;
+    }
+    // Inside the slab: orientation·q < 0 on all of its lower face, > 0 on all of its upper one.
+    const double eps = 1e-9 * scale * gmax;
+    const auto [lowLo, lowHi] = quadricRangeOnFace(q, cell, 3);
+    const auto [upLo, upHi] = quadricRangeOnFace(q, cell, 4);
+    const bool lowOk = patch.orientation > 0.0 ? lowHi < -eps : lowLo > eps;
+    const bool upOk = patch.orientation > 0.0 ? upLo > eps : upHi < -eps;
+    if (!lowOk || !upOk) continue;
+    patch.bounds = quadricBoundsInCell(q, cell);
+    if (patch.bounds.empty()) return false;
+    // The core: the heights of the sheet and of the region between it and the triangle.
+    const auto [sLo, sHi] = quadricRangeInCell(q, cell, n);
+    frame.coreLo = std::min(0.0, sLo - n.dot(centre)) - 1e-6 * scale;
+    frame.coreHi = std::max(0.0, sHi - n.dot(centre)) + 1e-6 * scale;
+    frame.reach = std::max(-frame.coreLo, frame.coreHi);
+    if (!(frame.reach <= reach)) return false;
+    patch.bounds.inflate(1e-7 * scale + tolerance);
+    // Covers its triangle: lines along the face normal through the triangle's inner lattice
+    // points meet it within a mean edge length.
+    constexpr int level = 6;
+    for (int j = 1; j < level; ++j)
+      for (int i = 1; i + j < level; ++i) {
+        const double u = double(i) / level, v = double(j) / level;
+        const Vec3 x = (1.0 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);
+        double hit;
+        if (!intersectQuadricPatch(patch, x - scale * n, n, 0.0, 2.0 * scale, hit)) return false;
+      }
+    return true;
+  }
+  return false;
+}
+
+void RobustImplicitModel::makeFlat(size_t t, double reach, ConvexCell& cell) {
+  const TriangleMesh& m = mesh();
+  Frame& frame = frames_[t];
+  QuadricPatch& patch = patches_[t];
+  const Vec3& n = frame.faceNormal;
+  const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
+  const double scale = m.meanEdgeLength(t);
+  const double tolerance = 1e-10 * (scale + centre.norm());
+  frame.flat = true;
+  frame.blend = 1.0;
+  patch.facing = Vec3::Zero();
+  patch.orientation = 1.0;
+  patch.q.fill(0.0);
+  // A triangle without area (or extent) has no plane: it stands for nothing (no base), and
+  // its flat triangle has no area either.
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
+  const bool degenerate = !(m.faceCross(t).norm() > 1e-10 * longest * longest);
+  patch.base = Vec4::Zero();
+  frame.reach = 1e-6 * scale;
+  frame.coreLo = -frame.reach;
+  frame.coreHi = frame.reach;
+  const double slab = 0.01 * scale;
+  patch.planes[3] << n, -n.dot(centre) + slab;
+  patch.planes[4] << -n, n.dot(centre) + slab;
+  patch.planeCount = 5;
+  patch.bounds = Bounds3();
+  for (int k = 0; k < 3; ++k) patch.bounds.extend(m.corner(t, k));
+  patch.bounds.inflate(1e-7 * scale + tolerance);
+  cell = ConvexCell();
+  if (degenerate) return;
+  // The plane and the base are the same numbers, so the region between them is empty.
+  patch.q[6] = n.x();
+  patch.q[7] = n.y();
+  patch.q[8] = n.z();
+  patch.q[9] = -n.dot(centre);
+  patch.base << n, -n.dot(centre);
+  cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + 5}, tolerance);
+  const Bounds3 exact = quadricBoundsInCell(patch.q, cell);
+  if (!exact.empty()) {
+    patch.bounds = exact;
+    patch.bounds.inflate(1e-7 * scale + tolerance);
+  }
+}
+
+void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
+                                      const QuadricCoeffs& pencil, double reach, ConvexCell& cell) {
+  const TriangleMesh& m = mesh();
+  Frame& frame = frames_[t];
+  const Vec3& n = frame.faceNormal;
+  frame.flat = false;
+  frame.blend = 0.0;
+  const auto finish = [&](double blend) {
+    frame.blend = blend;
+    const QuadricPatch& patch = patches_[t];
+    frame.cornerNormalErrorDeg = 0.0;
+    for (int k = 0; k < 3; ++k)
+      frame.cornerNormalErrorDeg =
+          std::max(frame.cornerNormalErrorDeg,
+                   angleDegrees(patch.orientation * quadricGradient(patch.q, m.corner(t, k)),
+                                m.cornerNormal(t, k)));
+  };
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
+  if (m.faceCross(t).norm() > 1e-10 * longest * longest) {
+    // The fit (moved along its pencil by the mesh-wide steps), then its graph member.
+    if (tryQuadric(t, fitted, reach, cell)) return finish(0.0);
+    QuadricCoeffs graph = fitted;
+    if (graphMember(pencil, n, graph) && tryQuadric(t, graph, reach, cell)) return finish(0.0);
+    // Corner normals blended towards the face normal: corners stay exact, the normals move
+    // as little as the checks allow.
+    for (double blend : kBlends) {
+      CornerData data;
+      for (int k = 0; k < 3; ++k) {
+        data.position[k] = m.corner(t, k);
+        data.normal[k] = safeNormalized((1.0 - blend) * m.cornerNormal(t, k) + blend * n, n);
+      }
+      for (int k = 0; k < 3; ++k)
+        data.arcMidpoint[k] = edgeArcMidpoint(data.position[k], data.normal[k],
+                                              data.position[(k + 1) % 3], data.normal[(k + 1) % 3]);
+      const QuadricFit fit = fitQuadric(data);
+      if (tryQuadric(t, fit.q, reach, cell)) return finish(blend);
+      QuadricCoeffs member = fit.q;
+      if (graphMember(fit.pencil, n, member) && tryQuadric(t, member, reach, cell))
+        return finish(blend);
+    }
+  }
+  makeFlat(t, reach, cell);
+  finish(1.0);
+}
+
+size_t RobustImplicitModel::flatCount() const {
+  size_t count = 0;
+  for (const Frame& frame : frames_) count += frame.flat;
+  return count;
+}
+
+size_t RobustImplicitModel::blendedCount() const {
+  size_t count = 0;
+  for (const Frame& frame : frames_) count += !frame.flat && frame.blend > 0.0;
+  return count;
+}
+
+}  // namespace quadtri
