@@ -12,6 +12,7 @@
 
 #include "quadtri/mesh/topology.h"
 #include "quadtri/mesh/triangle_mesh.h"
+#include "quadtri/mesh/winding.h"
 
 namespace quadtri {
 
@@ -58,57 +59,22 @@ void keepTriangles(TriangleMesh& mesh, const std::vector<char>& keep) {
 // mesh's inconsistent corner, which analyze counts. Returns {flipped, non-orientable parts}.
 std::pair<size_t, size_t> orientParts(TriangleMesh& mesh, const MeshTopology& topo) {
   if (mesh.hasNormals()) return {0, 0};
-  const size_t n = mesh.triangles.size();
-  constexpr uint8_t kUnseen = 2;
-  std::vector<uint8_t> flip(n, kUnseen);
-  std::vector<uint32_t> part, stack;
+  const WindingParts w = windingParts(mesh, topo);
   size_t flipped = 0, nonOrientable = 0;
-  for (size_t seed = 0; seed < n; ++seed) {
-    if (flip[seed] != kUnseen) continue;
-    part.clear();
-    stack.assign(1, uint32_t(seed));
-    flip[seed] = 0;
-    bool orientable = true;
-    while (!stack.empty()) {
-      const uint32_t t = stack.back();
-      stack.pop_back();
-      part.push_back(t);
-      for (int k = 0; k < 3; ++k) {
-        const Edge& e = topo.edges[topo.edgeOf[t][k]];
-        if (e.sides.size() != 2) continue;
-        const EdgeSide other =
-            e.sides[0].first == t && e.sides[0].second == k ? e.sides[1] : e.sides[0];
-        const uint32_t u = other.first;
-        if (u == t) continue;
-        // Consistent: u runs from t's edge end to its start.
-        const bool sameDirection = mesh.triangles[t][k] == mesh.triangles[u][other.second];
-        const uint8_t want = uint8_t(flip[t] ^ (sameDirection ? 1 : 0));
-        if (flip[u] == kUnseen) {
-          flip[u] = want;
-          stack.push_back(u);
-        } else if (flip[u] != want) {
-          orientable = false;
-        }
-      }
-    }
-    double keepVote = 0.0, flipVote = 0.0;
-    bool mixed = false;
-    for (uint32_t t : part) mixed |= flip[t] != flip[part[0]];
-    if (!orientable) {
+  for (size_t p = 0; p < w.parts.size(); ++p) {
+    const std::vector<uint32_t>& part = w.parts[p];
+    if (!w.orientable[p]) {
       ++nonOrientable;
-      for (uint32_t t : part) flip[t] = 0;
       continue;
     }
-    if (!mixed) {
-      for (uint32_t t : part) flip[t] = 0;
-      continue;
-    }
-    for (uint32_t t : part)  // area ×2 of the triangles that keep, and that flip, their winding
-      (flip[t] ? flipVote : keepVote) += mesh.faceCross(t).norm();
-    const bool invert = flipVote > keepVote;
-    for (uint32_t t : part) flip[t] = uint8_t(flip[t] ^ (invert ? 1 : 0));
+    // Area ×2 of the triangles that wind as the part's first one, and against it.
+    double with = 0.0, against = 0.0;
+    for (uint32_t t : part) (w.relative[t] > 0 ? with : against) += mesh.faceCross(t).norm();
+    if (std::all_of(part.begin(), part.end(), [&](uint32_t t) { return w.relative[t] > 0; }))
+      continue;                                   // consistent already
+    const int8_t keep = against > with ? -1 : 1;  // the winding of most of the area
     for (uint32_t t : part) {
-      if (!flip[t]) continue;
+      if (w.relative[t] == keep) continue;
       std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
       ++flipped;
     }

@@ -5,6 +5,7 @@
 
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
+#include "quadtri/mesh/winding.h"
 #include "quadtri/surface/robust_pencil.h"
 #include "quadtri/surface/robust_quadric_fit.h"
 
@@ -141,53 +142,23 @@ void keepAwayFromFaces(const TriangleMesh& mesh, const Edge& edge, SharedEdge& s
 // oriented (non-orientable, or edges with more sides) lets each triangle's own normals decide
 // (patchOrientation).
 std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo) {
-  const size_t n = mesh.triangleCount();
-  // Neighbours across two-sided edges, and whether their windings agree along the edge: at most
-  // one per local edge, in the order of the edges.
-  std::vector<std::array<std::pair<uint32_t, bool>, 3>> next(n);
-  std::vector<uint8_t> nextCount(n, 0);
-  std::vector<char> orientable(n, 1);
-  for (const Edge& edge : topo.edges) {
+  std::vector<char> manifold(mesh.triangleCount(), 1);
+  for (const Edge& edge : topo.edges)
     if (edge.sides.size() > 2)
-      for (auto [t, k] : edge.sides) orientable[t] = 0;
-    if (edge.sides.size() != 2) continue;
-    const auto [t0, k0] = edge.sides[0];
-    const auto [t1, k1] = edge.sides[1];
-    const bool opposite = mesh.triangles[t0][k0] != mesh.triangles[t1][k1];
-    next[t0][nextCount[t0]++] = {t1, opposite};
-    next[t1][nextCount[t1]++] = {t0, opposite};
-  }
-  std::vector<double> flip(n, 0.0), side(n, 1.0);
-  std::vector<uint32_t> part, stack;
-  for (size_t seed = 0; seed < n; ++seed) {
-    if (flip[seed] != 0.0) continue;
-    part.clear();
-    stack.assign(1, uint32_t(seed));
-    flip[seed] = 1.0;
-    bool ok = true;
-    while (!stack.empty()) {
-      const uint32_t t = stack.back();
-      stack.pop_back();
-      part.push_back(t);
-      ok &= orientable[t] != 0;
-      for (uint8_t i = 0; i < nextCount[t]; ++i) {
-        const auto [u, opposite] = next[t][i];
-        const double want = opposite ? flip[t] : -flip[t];
-        if (flip[u] == 0.0) {
-          flip[u] = want;
-          stack.push_back(u);
-        } else {
-          ok &= flip[u] == want;
-        }
-      }
-    }
+      for (auto [t, k] : edge.sides) manifold[t] = 0;
+  const WindingParts w = windingParts(mesh, topo);
+  std::vector<double> side(mesh.triangleCount(), 1.0);
+  for (size_t p = 0; p < w.parts.size(); ++p) {
+    const std::vector<uint32_t>& part = w.parts[p];
+    bool ok = w.orientable[p] != 0;
     double vote = 0.0;
     for (uint32_t t : part) {
+      ok &= manifold[t] != 0;
       const Vec3 ns = mesh.cornerNormal(t, 0) + mesh.cornerNormal(t, 1) + mesh.cornerNormal(t, 2);
-      vote += flip[t] * mesh.faceCross(t).dot(ns);
+      vote += w.relative[t] * mesh.faceCross(t).dot(ns);
     }
     const double sign = vote < 0.0 ? -1.0 : 1.0;
-    for (uint32_t t : part) side[t] = ok ? sign * flip[t] : patchOrientation(mesh, t);
+    for (uint32_t t : part) side[t] = ok ? sign * w.relative[t] : patchOrientation(mesh, t);
   }
   return side;
 }
