@@ -201,7 +201,7 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
   m.vertexNormalErrorConsistentDeg = corners.maxConsistentNormalErrorDeg;
   m.vertexNormalFlipRateConsistent = corners.consistentFlipRate();
   m.fallbackRate = fallbackRate(model);
-  const MeshTopology topology(model.mesh());
+  const MeshTopology& topology = model.mesh().topology();
   if (const std::optional<EdgeContinuity> c =
           edgeContinuity(model, topology, options.edgeSamples)) {
     m.c0Gap = c->c0Gap;

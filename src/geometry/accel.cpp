@@ -325,7 +325,6 @@ Accel::~Accel() {
 
 uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
   if (impl_->committed) fail("adding triangles: the acceleration structure is already committed");
-  mesh.validate("triangles for the acceleration structure");
   if (mesh.triangles.empty())
     fail("triangles for the acceleration structure: the mesh has no triangles");
   RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -342,10 +341,29 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
     fail("allocating triangle buffers failed ({} vertices, {} triangles)", mesh.positions.size(),
          mesh.triangles.size());
   }
+  // The entry check for any caller's mesh, made while copying (no second pass over a mesh the
+  // loader has validated already): what Embree reads must be finite as float and in range.
+  constexpr const char* kWhat = "triangles for the acceleration structure";
   for (size_t i = 0; i < mesh.positions.size(); ++i)
-    for (int c = 0; c < 3; ++c) vertices[3 * i + c] = float(mesh.positions[i][c]);
+    for (int c = 0; c < 3; ++c) {
+      const float x = float(mesh.positions[i][c]);
+      if (!std::isfinite(x)) {
+        rtcReleaseGeometry(geom);
+        fail("{}: vertex {} has a coordinate that is not a finite float ({})", kWhat, i,
+             mesh.positions[i][c]);
+      }
+      vertices[3 * i + c] = x;
+    }
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int c = 0; c < 3; ++c) indices[3 * t + c] = mesh.triangles[t][c];
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t v = mesh.triangles[t][c];
+      if (v >= mesh.positions.size()) {
+        rtcReleaseGeometry(geom);
+        fail("{}: triangle {} corner {} indexes vertex {}, but there are only {} vertices", kWhat,
+             t, c, v, mesh.positions.size());
+      }
+      indices[3 * t + c] = v;
+    }
   rtcCommitGeometry(geom);
   const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
   rtcReleaseGeometry(geom);

@@ -177,10 +177,14 @@ MeshRepairs repairMesh(TriangleMesh& mesh) {
 
   // One adjacency for both: re-winding permutes triangles' local edges but not which
   // triangles meet at an edge, so the non-manifold count holds afterwards too.
-  const MeshTopology topo(mesh);
-  std::tie(did.reorientedFaces, did.nonOrientableParts) = orientParts(mesh, topo);
+  mesh.topologyCache.forget();
+  auto topo = std::make_shared<const MeshTopology>(mesh);
+  std::tie(did.reorientedFaces, did.nonOrientableParts) = orientParts(mesh, *topo);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) did.zeroAreaFaces += zeroArea(mesh, t);
-  did.nonManifoldEdges = topo.nonManifoldEdgeCount();
+  did.nonManifoldEdges = topo->nonManifoldEdgeCount();
+  // Unless a face was re-wound (its local edges renumbered), the mesh keeps this adjacency for
+  // the normals, the model, its metrics and its tessellation.
+  if (did.reorientedFaces == 0) mesh.topologyCache.keep(mesh, std::move(topo));
 
   MeshRepairs& total = mesh.repairs;
   total.isolatedVertices += did.isolatedVertices;

@@ -78,7 +78,7 @@ void computeCreaseNormals(TriangleMesh& mesh, double creaseAngleDeg) {
   }
   // Join the corners that two faces have at each end of an edge they share smoothly.
   const double crease = creaseAngleDeg * kPi / 180.0;
-  const MeshTopology topo(mesh);
+  const MeshTopology& topo = mesh.topology();
   CornerSets sets(3 * nt);
   for (const Edge& edge : topo.edges) {
     if (edge.sides.size() != 2) continue;  // boundary and non-manifold edges end a fan

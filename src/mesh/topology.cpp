@@ -1,6 +1,8 @@
 #include "quadtri/mesh/topology.h"
 
 #include <algorithm>
+#include <atomic>
+#include <mutex>
 
 #include "quadtri/math/parallel.h"
 
@@ -73,6 +75,72 @@ size_t MeshTopology::boundaryEdgeCount() const {
 size_t MeshTopology::nonManifoldEdgeCount() const {
   return std::count_if(edges.begin(), edges.end(),
                        [](const Edge& e) { return e.sides.size() > 2; });
+}
+
+struct TopologyCache::State {
+  mutable std::mutex mutex;
+  std::shared_ptr<const MeshTopology> topology;
+  /// The triangle array it was built from: a mesh whose array moved or resized is rebuilt.
+  const Tri* data = nullptr;
+  size_t count = 0;
+  std::atomic<size_t> builds{0};
+
+  bool holds(const TriangleMesh& mesh) const {
+    return topology && data == mesh.triangles.data() && count == mesh.triangles.size();
+  }
+};
+
+TopologyCache::TopologyCache() : state_(std::make_unique<State>()) {}
+TopologyCache::~TopologyCache() = default;
+TopologyCache::TopologyCache(const TopologyCache&) : TopologyCache() {}
+TopologyCache& TopologyCache::operator=(const TopologyCache& other) {
+  if (this != &other) forget();
+  return *this;
+}
+TopologyCache::TopologyCache(TopologyCache&& other) noexcept : state_(std::move(other.state_)) {
+  other.state_ = std::make_unique<State>();
+}
+TopologyCache& TopologyCache::operator=(TopologyCache&& other) noexcept {
+  if (this != &other) {
+    state_ = std::move(other.state_);
+    other.state_ = std::make_unique<State>();
+  }
+  return *this;
+}
+
+const MeshTopology& TopologyCache::get(const TriangleMesh& mesh) const {
+  {
+    const std::lock_guard<std::mutex> lock(state_->mutex);
+    if (state_->holds(mesh)) return *state_->topology;
+  }
+  // Built outside the lock: two threads asking at once may both build; the first kept wins.
+  auto built = std::make_shared<const MeshTopology>(mesh);
+  state_->builds.fetch_add(1, std::memory_order_relaxed);
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  if (!state_->holds(mesh)) {
+    state_->topology = std::move(built);
+    state_->data = mesh.triangles.data();
+    state_->count = mesh.triangles.size();
+  }
+  return *state_->topology;
+}
+
+void TopologyCache::keep(const TriangleMesh& mesh, std::shared_ptr<const MeshTopology> topology) {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  state_->topology = std::move(topology);
+  state_->data = mesh.triangles.data();
+  state_->count = mesh.triangles.size();
+}
+
+void TopologyCache::forget() {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  state_->topology.reset();
+  state_->data = nullptr;
+  state_->count = 0;
+}
+
+size_t TopologyCache::builds() const {
+  return state_->builds.load(std::memory_order_relaxed);
 }
 
 }  // namespace quadtri

@@ -48,7 +48,7 @@ std::vector<StudyRow> studyMesh(const StudyMesh& entry, const std::vector<std::s
     if (!fs::exists(entry.path)) fail("{}: no such file", entry.path.string());
     TriangleMesh loaded = loadMesh(entry.path, options.normals);
     triangles = loaded.triangleCount();
-    closed = MeshTopology(loaded).isClosed();
+    closed = loaded.topology().isClosed();
     mesh = std::make_shared<const TriangleMesh>(std::move(loaded));
   } catch (const Error& e) {
     loadError = errorText(e, true);

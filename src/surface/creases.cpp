@@ -56,7 +56,7 @@ Vec3 EdgeEnd::tangentPart(const Vec3& e, const Vec3& own) const {
 
 EdgeEnds edgeEnds(const TriangleMesh& mesh) {
   if (!mesh.hasNormals()) return EdgeEnds(mesh.triangleCount());
-  return edgeEnds(mesh, MeshTopology(mesh));
+  return edgeEnds(mesh, mesh.topology());
 }
 
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {

@@ -104,7 +104,7 @@ Vec3 edgeControlPoint(const Vec3& viIn, const Vec3& niIn, const Vec3& vjIn, cons
 
 std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
                                                    std::vector<uint8_t>* gaveUpPatches) {
-  return edgeControlPoints(mesh, MeshTopology(mesh), gaveUpPatches);
+  return edgeControlPoints(mesh, mesh.topology(), gaveUpPatches);
 }
 
 std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,

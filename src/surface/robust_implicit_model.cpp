@@ -259,7 +259,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
 RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> meshIn)
     : SurfaceModel(std::move(meshIn)) {
   const TriangleMesh& m = mesh();
-  const MeshTopology topo(m);
+  const MeshTopology& topo = m.topology();
   std::vector<SharedEdge> edges(topo.edges.size());
   parallelFor(size_t(0), edges.size(), [&](size_t i) { edges[i] = sharedEdge(m, topo.edges[i]); });
   const std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m, topo);

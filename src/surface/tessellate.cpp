@@ -116,7 +116,7 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellat
                                    ? thesisGridPattern(tessellation.level)
                                    : latticePattern(tessellation.level);
   const bool weld = model.sharesEdges();
-  const MeshTopology topo(mesh);
+  const MeshTopology& topo = mesh.topology();
   const int steps = pattern.edgeSteps;
   // Where the mesh splits normals (a crease), the welded points there keep each side's own
   // surface normal: positions are shared, normals are per corner.

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 
 #include "fixtures/sphere_patches.h"
 #include "quadtri/geometry/accel.h"
@@ -212,6 +213,15 @@ TEST(Accel, MisuseIsAnError) {
   Accel accel;
   EXPECT_THROW(accel.addTriangles(mesh), Error);  // index out of range
   mesh.triangles = {{0, 1, 2}};
+  // A coordinate finite as a double but not as the float Embree reads is refused, by name.
+  mesh.positions[1].x() = 1e300;
+  try {
+    accel.addTriangles(mesh);
+    ADD_FAILURE() << "a vertex at 1e300 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 1"), std::string::npos) << e.what();
+  }
+  mesh.positions[1].x() = 1.0;
   accel.addTriangles(mesh);
   EXPECT_THROW(accel.intersect({Vec3(0.2, 0.2, -1), Vec3(0, 0, 1)}), Error);  // not committed
   std::vector<QuadricPatch> bad(1);

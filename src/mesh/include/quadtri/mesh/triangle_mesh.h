@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,38 @@
 namespace quadtri {
 
 using Tri = std::array<uint32_t, 3>;
+
+struct MeshTopology;
+struct TriangleMesh;
+
+/// A mesh's edge adjacency, built on first request and then kept with the mesh, so that the
+/// loader's repair, the normals, a model, its metrics and its tessellation share one (derived
+/// quantities on request, as geometry-central's require*() calls). Copying a mesh does not copy
+/// it: the copy builds its own when asked, so a copy may be edited freely. Requests from
+/// several threads are safe; the adjacency is built outside any lock (building it runs parallel
+/// loops, and a thread waiting on a lock inside one could be asked to run the other request).
+class TopologyCache {
+ public:
+  TopologyCache();
+  ~TopologyCache();
+  TopologyCache(const TopologyCache&);
+  TopologyCache& operator=(const TopologyCache&);
+  TopologyCache(TopologyCache&&) noexcept;
+  TopologyCache& operator=(TopologyCache&&) noexcept;
+
+  /// The adjacency of `mesh` (the mesh that holds this cache).
+  const MeshTopology& get(const TriangleMesh& mesh) const;
+  /// Keeps `topology`, already built from `mesh`'s triangles as they are now.
+  void keep(const TriangleMesh& mesh, std::shared_ptr<const MeshTopology> topology);
+  /// Drops what was kept (after the mesh's triangles changed in place).
+  void forget();
+  /// How many times this cache built an adjacency (for tests of "built once").
+  size_t builds() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 /// Positions are welded (one index per distinct point), so adjacency follows from the indices.
 /// Shading normals are per corner: corner k of triangle t has normal normals[normalIndices[t][k]],
@@ -42,6 +75,12 @@ struct TriangleMesh {
 
   /// Checks indices, finiteness and normal layout; throws Error naming the element otherwise.
   void validate(const std::string& what) const;
+
+  /// The edge adjacency of the triangles, built once (TopologyCache). Code that edits
+  /// `triangles` in place after asking for it calls topologyCache.forget(); a mesh whose
+  /// triangle array was replaced or resized is rebuilt on its own.
+  const MeshTopology& topology() const { return topologyCache.get(*this); }
+  TopologyCache topologyCache;
 };
 
 }  // namespace quadtri
