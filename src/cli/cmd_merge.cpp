@@ -15,6 +15,7 @@ Action addMergeCommand(CLI::App& app) {
   struct Options {
     std::vector<std::string> tiles;
     std::string output;
+    bool allowUnfinished = false;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -28,6 +29,9 @@ Action addMergeCommand(CLI::App& app) {
   sub->add_option("-o,--output", opt->output,
                   "Assembled image (.exr, or .png), or the joined study (.csv)")
       ->required();
+  sub->add_flag("--allow-unfinished", opt->allowUnfinished,
+                "Merge tiles that --time or a signal cut short, their unfinished pixels black "
+                "(refused otherwise)");
   return [opt]() {
     size_t csv = 0;
     for (const std::string& t : opt->tiles) csv += std::filesystem::path(t).extension() == ".csv";
@@ -44,10 +48,13 @@ Action addMergeCommand(CLI::App& app) {
     if (ext != ".exr" && ext != ".png")
       fail("output {}: expected a .exr or .png file", opt->output);
     std::vector<std::filesystem::path> tiles(opt->tiles.begin(), opt->tiles.end());
-    const MergeSummary summary = mergeTiles(tiles, opt->output);
+    const MergeSummary summary = mergeTiles(tiles, opt->output, {opt->allowUnfinished});
     if (summary.nonFiniteReplaced)
       fmt::print(stderr, "warning: {}: {} non-finite values written as 0\n", opt->output,
                  summary.nonFiniteReplaced);
+    if (summary.unfinishedPixels)
+      fmt::print(stderr, "warning: {}: {} pixels of cut-short tiles are black\n", opt->output,
+                 summary.unfinishedPixels);
     fmt::print("wrote {}: {} tiles, {}x{}\n", opt->output, summary.tiles, summary.width,
                summary.height);
     return 0;

@@ -178,6 +178,7 @@ Action addRenderCommand(CLI::App& app) {
         {tile_attribute::kSeed, std::to_string(options.seed)},
         {tile_attribute::kSamples, std::to_string(options.samplesPerPixel)},
         {tile_attribute::kModel, modelOverride.value_or("scene")},
+        {tile_attribute::kUnfinished, std::to_string(result.stats.unfinishedPixels)},
         {tile_attribute::kTile, tile   ? tile->toString()
                                 : crop ? std::string("crop")
                                        : (frame.wholeFilm(result.image) ? "film" : "crop")}};

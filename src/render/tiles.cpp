@@ -68,7 +68,8 @@ Tile readTile(const std::filesystem::path& path) {
            name);
     tile.attributes[name] = p->get_string();
   }
-  for (const char* name : {tile_attribute::kScene, tile_attribute::kTile})
+  for (const char* name :
+       {tile_attribute::kScene, tile_attribute::kTile, tile_attribute::kUnfinished})
     if (const OIIO::ParamValue* p = spec.find_attribute(name, OIIO::TypeDesc::STRING))
       tile.attributes[name] = p->get_string();
   tile.rgb.resize(size_t(spec.width) * size_t(spec.height) * 3);
@@ -138,8 +139,22 @@ PixelWindow tileWindow(const TileIndex& tile, int filmWidth, int filmHeight) {
   return {0, y0, filmWidth, y1 - y0};
 }
 
+// The black pixels a cut-short render left in the tile; 0 for a tile written before the
+// attribute existed (it cannot tell).
+size_t unfinishedPixels(const Tile& tile) {
+  const auto it = tile.attributes.find(tile_attribute::kUnfinished);
+  if (it == tile.attributes.end()) return 0;
+  size_t n = 0;
+  const char* end = it->second.data() + it->second.size();
+  const auto [ptr, ec] = std::from_chars(it->second.data(), end, n);
+  if (ec != std::errc() || ptr != end)
+    fail("{}: {} is '{}', expected a count of pixels", tile.path, tile_attribute::kUnfinished,
+         it->second);
+  return n;
+}
+
 MergeSummary mergeTiles(const std::vector<std::filesystem::path>& paths,
-                        const std::filesystem::path& output) {
+                        const std::filesystem::path& output, const MergeOptions& options) {
   if (paths.empty()) fail("merge: no tiles given");
   std::vector<Tile> tiles;
   tiles.reserve(paths.size());
@@ -212,6 +227,22 @@ MergeSummary mergeTiles(const std::vector<std::filesystem::path>& paths,
          height, text);
   }
 
+  // A tile cut short by --time or a signal has black pixels that look rendered.
+  size_t unfinished = 0;
+  std::string cutShort;
+  for (const Tile& t : tiles)
+    if (const size_t n = unfinishedPixels(t)) {
+      unfinished += n;
+      cutShort += fmt::format("\n  {}: {} of its {} pixels are not rendered", t.path, n,
+                              int64_t(t.window.width) * int64_t(t.window.height));
+    }
+  if (!cutShort.empty() && !options.allowUnfinished)
+    fail(
+        "merge: a render was cut short (--time or a signal) in these tiles:{}\nrender them again "
+        "(with --checkpoint and --resume for long ones), or merge with --allow-unfinished to keep "
+        "their unfinished pixels black",
+        cutShort);
+
   Image image(width, height);
   for (const Tile& t : tiles)
     for (int y = 0; y < t.window.height; ++y)
@@ -222,12 +253,15 @@ MergeSummary mergeTiles(const std::vector<std::filesystem::path>& paths,
       }
   ImageFrame frame;
   for (const auto& [name, value] : first.attributes)
-    if (name != tile_attribute::kTile) frame.attributes.emplace_back(name, value);
+    if (name != tile_attribute::kTile && name != tile_attribute::kUnfinished)
+      frame.attributes.emplace_back(name, value);
   frame.attributes.emplace_back(tile_attribute::kTile, "film");
+  frame.attributes.emplace_back(tile_attribute::kUnfinished, std::to_string(unfinished));
   MergeSummary summary;
   summary.width = width;
   summary.height = height;
   summary.tiles = tiles.size();
+  summary.unfinishedPixels = unfinished;
   summary.nonFiniteReplaced = writeImage(image, output, frame);
   return summary;
 }

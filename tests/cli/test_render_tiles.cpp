@@ -177,6 +177,28 @@ TEST(RenderTiles, MergeRefusesMissingDoubledAndForeignTiles) {
   err = mergeError({t1, t2, spp4});
   EXPECT_NE(err.find(spp4 + ": quadtri_spp 4, but " + t1 + " has 3"), std::string::npos) << err;
 
+  // A tile cut short by --time (a microsecond: at most a few pixels start) is refused, named,
+  // with its count of black pixels; --allow-unfinished merges it and says how many are black.
+  const std::string cut = tile("cut.exr", {"--tile", "3/3", "--time", "0.000001"});
+  const size_t unfinished =
+      std::stoul(readExr(cut).spec.get_string_attribute("quadtri_unfinished_pixels", "0"));
+  EXPECT_GT(unfinished, 0u);
+  EXPECT_LE(unfinished, 24u * 6u);
+  EXPECT_EQ(readExr(t3).spec.get_string_attribute("quadtri_unfinished_pixels"), "0");
+  err = mergeError({t1, t2, cut});
+  EXPECT_NE(err.find(fmt::format("{}: {} of its 144 pixels are not rendered", cut, unfinished)),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("--allow-unfinished"), std::string::npos) << err;
+  ASSERT_EQ(run({"merge", t1, t2, cut, "--allow-unfinished", "-o", out}, dir, "merge-cut", &err), 0)
+      << err;
+  EXPECT_NE(err.find(fmt::format("{} pixels of cut-short tiles are black", unfinished)),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(readExr(out).spec.get_string_attribute("quadtri_unfinished_pixels"),
+            std::to_string(unfinished));
+  fs::remove(out);
+
   // A window cannot be a PNG: it could not say where it lies.
   ASSERT_EQ(
       run({"render", scene, "--tile", "1/3", "-o", (dir / "t.png").string()}, dir, "png", &err), 1);

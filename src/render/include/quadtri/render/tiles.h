@@ -45,6 +45,9 @@ inline constexpr const char* kSamples = "quadtri_spp";
 inline constexpr const char* kModel = "quadtri_model";  ///< the --model override, or "scene"
 /// "I/N" of --tile, "crop" for --crop, "film" for a whole render (not compared).
 inline constexpr const char* kTile = "quadtri_tile";
+/// How many of the window's pixels the render left black, stopped by --time or a signal
+/// (not compared: merge refuses a tile where it is not 0, unless told to allow it).
+inline constexpr const char* kUnfinished = "quadtri_unfinished_pixels";
 }  // namespace tile_attribute
 
 /// What mergeTiles assembled.
@@ -52,6 +55,13 @@ struct MergeSummary {
   int width = 0, height = 0;  ///< the film
   size_t tiles = 0;
   size_t nonFiniteReplaced = 0;  ///< channels writeImage wrote as 0 (none for quadtri's tiles)
+  size_t unfinishedPixels = 0;   ///< black pixels of cut-short tiles (allowUnfinished only)
+};
+
+struct MergeOptions {
+  /// Merge tiles that a time limit or a signal cut short (their unfinished pixels stay black)
+  /// instead of refusing them.
+  bool allowUnfinished = false;
 };
 
 /// Reads the tile EXRs, checks that they come from one render (the same film size and the same
@@ -59,8 +69,9 @@ struct MergeSummary {
 /// writes the assembled film to `output` (.exr) atomically, with the tiles' attributes. Throws
 /// Error before anything is written: naming the tile that cannot be read or differs from the
 /// first (and in what), the pairs of tiles that overlap (and where), and the film rectangles no
-/// tile covers (as --crop windows, with the --tile I/N that is missing when the tiles say).
+/// tile covers (as --crop windows, with the --tile I/N that is missing when the tiles say), and
+/// every tile whose kUnfinished attribute says the render was cut short (unless allowed).
 MergeSummary mergeTiles(const std::vector<std::filesystem::path>& tiles,
-                        const std::filesystem::path& output);
+                        const std::filesystem::path& output, const MergeOptions& options = {});
 
 }  // namespace quadtri
