@@ -9,6 +9,7 @@
 #include "quadtri/io/atomic_file.h"
 #include "quadtri/math/error.h"
 #include "quadtri/report/figure.h"
+#include "quadtri/report/figure_cells.h"
 #include "render_flags.h"
 
 namespace quadtri::cli {
@@ -18,7 +19,8 @@ Action addFigureCommand(CLI::App& app) {
   struct Options {
     std::string setup = "a", shapes = "triangle,tetrahedron,icosahedron,teapot",
                 models = "shading,quadric-edges,quadric-param,quadric-implicit",
-                scenes = "scenes/thesis", output, csv, ratioPlot;
+                scenes = "scenes/thesis", output, csv, ratioPlot, shard, cells;
+    std::vector<std::string> from;
     int res = 0, repeats = 1;
     RenderFlags flags;
     NormalFlags normals;
@@ -36,7 +38,8 @@ Action addFigureCommand(CLI::App& app) {
   sub->add_option("--models", opt->models, "Comma-separated models (grid columns)")
       ->capture_default_str();
   sub->add_option("--scenes", opt->scenes, "Folder of the scene files")->capture_default_str();
-  sub->add_option("-o,--output", opt->output, "Grid image (.png)")->required();
+  sub->add_option("-o,--output", opt->output,
+                  "Grid image (.png); required unless --shard only renders cells");
   sub->add_option("--csv", opt->csv, "Render time per cell, as CSV");
   sub->add_option("--ratio-plot", opt->ratioPlot,
                   "PNG plot of the render-time ratio of the last model over each other model "
@@ -47,6 +50,14 @@ Action addFigureCommand(CLI::App& app) {
                  "Shading normals of every obj/ply shape, overriding the scenes': file, average "
                  "(thesis eq. 2.8) or angle (angle-weighted, split at --crease-angle)",
                  "");
+  sub->add_option("--shard", opt->shard,
+                  "Render only rows I, I+N, ... of N (every model of each, side by side) and "
+                  "save their cells in --cells DIR, for --from to compose");
+  sub->add_option("--cells", opt->cells,
+                  "Folder to save each rendered cell in, as an EXR with its measurements");
+  sub->add_option("--from", opt->from,
+                  "Compose the figure from the cells saved in these folders (by --shard runs "
+                  "with the same options) instead of rendering");
   sub->add_option("--repeat", opt->repeats,
                   "Renders per cell, in rounds that rotate the models' order; the CSV and the "
                   "ratio plot take the median")
@@ -60,7 +71,22 @@ Action addFigureCommand(CLI::App& app) {
     for (const std::string& m : request.models) checkModelName("--models", m);
     if (opt->res < 0) fail("--res {}: expected a positive number of pixels", opt->res);
     if (opt->repeats < 1) fail("--repeat {}: expected at least 1", opt->repeats);
-    if (std::filesystem::path(opt->output).extension() != ".png")
+    if (!opt->shard.empty()) {
+      request.shard = Shard::parse(opt->shard);
+      if (opt->cells.empty())
+        fail("--shard {}: give --cells DIR to keep the cells for --from", opt->shard);
+    }
+    if (!opt->from.empty() && (!opt->shard.empty() || !opt->cells.empty()))
+      fail("--from composes cells already rendered: it takes no --shard or --cells");
+    // A share of the rows cannot make the figure: --from composes it once every shard is done.
+    const bool composes = request.shard.count == 1;
+    if (!composes && !(opt->output.empty() && opt->csv.empty() && opt->ratioPlot.empty()))
+      fail(
+          "--shard {}: one shard renders cells only; compose the figure, its CSV and ratio plot "
+          "with --from once every shard is done (drop -o, --csv and --ratio-plot here)",
+          opt->shard);
+    if (composes && opt->output.empty()) fail("-o: the grid image (.png) is required");
+    if (!opt->output.empty() && std::filesystem::path(opt->output).extension() != ".png")
       fail("-o {}: expected a .png file", opt->output);
     request.settings = opt->flags.settings();
     if (opt->res > 0) request.settings.defines["res"] = std::to_string(opt->res);
@@ -87,7 +113,22 @@ Action addFigureCommand(CLI::App& app) {
       std::fflush(stdout);
     };
 
-    const std::vector<FigureCell> cells = renderFigureCells(request);
+    const std::string settingsText = figureSettingsText(request, setup);
+    std::vector<FigureCell> cells;
+    if (!opt->from.empty()) {
+      cells =
+          loadFigureCells(request, settingsText,
+                          std::vector<std::filesystem::path>(opt->from.begin(), opt->from.end()));
+      for (const FigureCell& c : cells) request.onCell(c);
+    } else {
+      cells = renderFigureCells(request);
+      if (!opt->cells.empty()) {
+        for (const FigureCell& c : cells)
+          saveFigureCell(c, settingsText, opt->cells, request.shard);
+        fmt::print("saved {} cells in {}\n", cells.size(), opt->cells);
+      }
+    }
+    if (!composes) return 0;
     std::vector<Image> images;
     for (const FigureCell& c : cells) images.push_back(c.image);
     composeGrid(request.shapes, request.models, images).savePng(opt->output);

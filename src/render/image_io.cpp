@@ -86,4 +86,32 @@ size_t writeImage(const Image& image, const std::filesystem::path& path, const I
   return nonFinite;
 }
 
+Image readImage(const std::filesystem::path& path, ImageFrame* frame) {
+  const std::string name = path.string();
+  auto in = OIIO::ImageInput::open(name);
+  if (!in) fail("{}: cannot read the image: {}", name, OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.nchannels != 3)
+    fail("{}: {} channels, expected the 3 (RGB) quadtri writes", name, spec.nchannels);
+  if (spec.full_x != 0 || spec.full_y != 0)
+    fail("{}: the display window starts at {},{}, expected 0,0", name, spec.full_x, spec.full_y);
+  std::vector<float> rgb(size_t(spec.width) * size_t(spec.height) * 3);
+  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data()))
+    fail("{}: reading the pixels failed: {}", name, in->geterror());
+  Image image(spec.width, spec.height);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = Color(double(rgb[3 * i]), double(rgb[3 * i + 1]), double(rgb[3 * i + 2]));
+  if (frame) {
+    frame->x = spec.x;
+    frame->y = spec.y;
+    frame->filmWidth = spec.full_width;
+    frame->filmHeight = spec.full_height;
+    frame->attributes.clear();
+    for (const OIIO::ParamValue& p : spec.extra_attribs)
+      if (p.type() == OIIO::TypeDesc::STRING)
+        frame->attributes.emplace_back(p.name().string(), p.get_string());
+  }
+  return image;
+}
+
 }  // namespace quadtri

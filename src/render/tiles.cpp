@@ -1,6 +1,5 @@
 #include "quadtri/render/tiles.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <set>
 
 #include "quadtri/math/error.h"
+#include "quadtri/render/image_io.h"
 
 namespace quadtri {
 namespace {
@@ -36,7 +36,7 @@ struct Tile {
   PixelWindow window;
   int filmWidth = 0, filmHeight = 0;
   std::map<std::string, std::string> attributes;
-  std::vector<float> rgb;
+  Image image;
 };
 
 // Seed, samples and model first: they name the difference; the scene key catches the rest.
@@ -46,35 +46,20 @@ const char* const kCompared[] = {tile_attribute::kSeed, tile_attribute::kSamples
 Tile readTile(const std::filesystem::path& path) {
   Tile tile;
   tile.path = path.string();
-  auto in = OIIO::ImageInput::open(tile.path);
-  if (!in) fail("{}: cannot read the tile: {}", tile.path, OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.nchannels != 3)
-    fail("{}: {} channels, expected the 3 (RGB) of a quadtri tile", tile.path, spec.nchannels);
-  if (spec.full_x != 0 || spec.full_y != 0)
-    fail("{}: the display window starts at {},{}, expected 0,0", tile.path, spec.full_x,
-         spec.full_y);
-  tile.window = {spec.x, spec.y, spec.width, spec.height};
-  tile.filmWidth = spec.full_width;
-  tile.filmHeight = spec.full_height;
-  if (spec.x < 0 || spec.y < 0 || spec.x + spec.width > spec.full_width ||
-      spec.y + spec.height > spec.full_height)
+  ImageFrame frame;
+  tile.image = readImage(path, &frame);
+  tile.window = {frame.x, frame.y, tile.image.width, tile.image.height};
+  tile.filmWidth = frame.filmWidth;
+  tile.filmHeight = frame.filmHeight;
+  if (frame.x < 0 || frame.y < 0 || frame.x + tile.image.width > frame.filmWidth ||
+      frame.y + tile.image.height > frame.filmHeight)
     fail("{}: the data window {} does not lie on the {}x{} film", tile.path, tile.window.toString(),
-         spec.full_width, spec.full_height);
-  for (const char* name : kCompared) {
-    const OIIO::ParamValue* p = spec.find_attribute(name, OIIO::TypeDesc::STRING);
-    if (!p)
+         frame.filmWidth, frame.filmHeight);
+  for (const auto& [name, value] : frame.attributes) tile.attributes[name] = value;
+  for (const char* name : kCompared)
+    if (!tile.attributes.count(name))
       fail("{}: no {} attribute: not a tile of `quadtri render` (--tile/--crop to .exr)", tile.path,
            name);
-    tile.attributes[name] = p->get_string();
-  }
-  for (const char* name :
-       {tile_attribute::kScene, tile_attribute::kTile, tile_attribute::kUnfinished})
-    if (const OIIO::ParamValue* p = spec.find_attribute(name, OIIO::TypeDesc::STRING))
-      tile.attributes[name] = p->get_string();
-  tile.rgb.resize(size_t(spec.width) * size_t(spec.height) * 3);
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, tile.rgb.data()))
-    fail("{}: reading the pixels failed: {}", tile.path, in->geterror());
   return tile;
 }
 
@@ -246,11 +231,8 @@ MergeSummary mergeTiles(const std::vector<std::filesystem::path>& paths,
   Image image(width, height);
   for (const Tile& t : tiles)
     for (int y = 0; y < t.window.height; ++y)
-      for (int x = 0; x < t.window.width; ++x) {
-        const size_t i = (size_t(y) * size_t(t.window.width) + size_t(x)) * 3;
-        image.at(x + t.window.x, y + t.window.y) =
-            Color(double(t.rgb[i]), double(t.rgb[i + 1]), double(t.rgb[i + 2]));
-      }
+      for (int x = 0; x < t.window.width; ++x)
+        image.at(x + t.window.x, y + t.window.y) = t.image.at(x, y);
   ImageFrame frame;
   for (const auto& [name, value] : first.attributes)
     if (name != tile_attribute::kTile && name != tile_attribute::kUnfinished)

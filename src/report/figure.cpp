@@ -75,7 +75,9 @@ std::vector<FigureCell> renderFigureCells(const FigureRequest& request) {
          *settings.model);
   using Clock = std::chrono::steady_clock;
   std::vector<FigureCell> cells;
-  for (const std::string& shape : request.shapes) {
+  for (size_t row = 0; row < request.shapes.size(); ++row) {
+    if (!request.shard.holds(row)) continue;
+    const std::string& shape = request.shapes[row];
     const std::filesystem::path file = request.sceneFor(shape);
     const size_t first = cells.size(), n = request.models.size();
     std::vector<BuiltScene> built;

@@ -7,6 +7,7 @@
 
 #include "quadtri/math/error.h"
 #include "quadtri/report/figure.h"
+#include "quadtri/report/figure_cells.h"
 
 namespace quadtri::testing {
 namespace {
@@ -189,6 +190,97 @@ TEST(FigureCells, RenderTimeRatiosPairCellsOfTheSameShape) {
   ASSERT_EQ(points.size(), 2u);
   EXPECT_EQ(points[0], std::make_pair(20.0, 0.25));
   EXPECT_EQ(points[1], std::make_pair(320.0, 1.5));
+}
+
+/// A diffuse sphere under a constant sky: its pixels depend on the sampler's seed.
+void writeSphereScene(const std::filesystem::path& file, double radiance) {
+  std::ofstream out(file);
+  out << "<scene version=\"3.0.0\">\n"
+         "  <default name=\"res\" value=\"8\"/>\n"
+         "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"3\"/></integrator>\n"
+         "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n"
+         "    <transform name=\"to_world\"><lookat origin=\"0, 0, 4\" target=\"0, 0, 0\" "
+         "up=\"0, 1, 0\"/></transform>\n"
+         "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"$res\"/>"
+         "<integer name=\"height\" value=\"$res\"/></film>\n"
+         "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"2\"/>"
+         "</sampler>\n"
+         "  </sensor>\n"
+      << "  <emitter type=\"constant\"><rgb name=\"radiance\" value=\"" << radiance
+      << "\"/></emitter>\n  <shape type=\"sphere\"><bsdf type=\"diffuse\"/></shape>\n</scene>\n";
+}
+
+TEST(FigureCells, ShardsSavedAndComposedAreTheOneShotFigure) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("quadtri_shards_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  for (const char* shape : {"a", "b", "c"})
+    writeSphereScene(folder / (std::string("t-") + shape + ".xml"), shape[0] == 'b' ? 0.5 : 1.0);
+  FigureRequest request;
+  request.shapes = {"a", "b", "c"};
+  request.models = {"shading", "quadric-implicit"};
+  request.sceneFor = [&](const std::string& shape) { return folder / ("t-" + shape + ".xml"); };
+  request.settings.seed = 7;
+  request.repeats = 2;
+  const std::string text = figureSettingsText(request, "t");
+  const std::vector<FigureCell> oneShot = renderFigureCells(request);
+
+  // Shard I of 2 renders rows I-1, I+1, ...: every model of each, and saves them.
+  std::vector<std::vector<FigureCell>> shards;
+  for (size_t i = 1; i <= 2; ++i) {
+    FigureRequest part = request;
+    part.shard = Shard{i, 2};
+    shards.push_back(renderFigureCells(part));
+    for (const FigureCell& c : shards.back())
+      saveFigureCell(c, text, folder / ("cells-" + std::to_string(i)), part.shard);
+  }
+  ASSERT_EQ(shards[0].size(), 4u);  // rows a and c
+  ASSERT_EQ(shards[1].size(), 2u);  // row b
+  EXPECT_EQ(shards[1][0].shape, "b");
+
+  const std::vector<FigureCell> composed =
+      loadFigureCells(request, text, {folder / "cells-1", folder / "cells-2"}, 2);
+  ASSERT_EQ(composed.size(), oneShot.size());
+  for (size_t i = 0; i < composed.size(); ++i) {
+    EXPECT_EQ(composed[i].shape, oneShot[i].shape);
+    EXPECT_EQ(composed[i].model, oneShot[i].model);
+    ASSERT_EQ(composed[i].image.pixels.size(), oneShot[i].image.pixels.size());
+    // Per-pixel random streams: the shard's pixels are the one-shot's (floats in the EXR).
+    for (size_t p = 0; p < composed[i].image.pixels.size(); ++p)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(composed[i].image.pixels[p][c], double(float(oneShot[i].image.pixels[p][c])));
+    EXPECT_EQ(composed[i].primitives, oneShot[i].primitives);
+    EXPECT_EQ(composed[i].renderTimes.size(), 2u);
+  }
+  // The measurements come back exactly as the shard measured them.
+  const FigureCell& b = composed[2];
+  EXPECT_EQ(b.renderTimes, shards[1][0].renderTimes);
+  EXPECT_EQ(b.buildSeconds, shards[1][0].buildSeconds);
+  EXPECT_EQ(b.renderSeconds, median(shards[1][0].renderTimes));
+
+  // A missing shard names its cells and the shard that renders them.
+  try {
+    loadFigureCells(request, text, {folder / "cells-1"});  // the cells say "of 2"
+    ADD_FAILURE() << "a missing shard was not noticed";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("b / shading (rendered by --shard 2/2)"), std::string::npos) << what;
+    EXPECT_NE(what.find("b / quadric-implicit (rendered by --shard 2/2)"), std::string::npos)
+        << what;
+  }
+  // Cells of other settings, or a cell given twice, are refused by file.
+  FigureRequest other = request;
+  other.settings.seed = 8;
+  try {
+    loadFigureCells(other, figureSettingsText(other, "t"), {folder / "cells-1"});
+    ADD_FAILURE() << "cells of another seed were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a cell of another figure: seed=7 against seed=8"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(loadFigureCells(request, text, {folder / "cells-1", folder / "cells-1"}), Error);
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

@@ -46,4 +46,10 @@ struct ImageFrame {
 /// where a window lies.
 size_t writeImage(const Image& image, const std::filesystem::path& path, const ImageFrame& frame);
 
+/// Reads an RGB image (an EXR of writeImage, or any 3-channel file OpenImageIO reads) into
+/// linear values; `frame`, when given, gets its data window's origin, its film (display window)
+/// and its string attributes. Throws Error naming the file when it cannot be read, has other
+/// than 3 channels, or its display window does not start at 0,0.
+Image readImage(const std::filesystem::path& path, ImageFrame* frame = nullptr);
+
 }  // namespace quadtri

@@ -11,6 +11,7 @@
 
 #include "quadtri/io/canvas.h"
 #include "quadtri/render/image_io.h"
+#include "quadtri/report/shard.h"
 #include "quadtri/scene/render_settings.h"
 #include "quadtri/scene/scene_loader.h"
 
@@ -72,12 +73,14 @@ struct FigureRequest {
   int repeats = 1;
   /// Called after each cell, e.g. to report progress.
   std::function<void(const FigureCell&)> onCell;
+  /// Render only the rows (shapes) of this share, every model of each (figure_cells.h).
+  Shard shard;
 };
 
-/// Renders every (shape, model) cell, row-major (shapes outer). The defines `model` and `shape`
-/// are set to the cell's model and shape, so one scene may serve every shape. Throws Error for
-/// settings RenderSettings::validate refuses or that name a model.
-/// The image of a cell is that of its first render.
+/// Renders every (shape, model) cell of the shard's rows, row-major (shapes outer). The defines
+/// `model` and `shape` are set to the cell's model and shape, so one scene may serve every shape.
+/// Throws Error for settings RenderSettings::validate refuses or that name a model. The image of a
+/// cell is that of its first render.
 std::vector<FigureCell> renderFigureCells(const FigureRequest& request);
 
 /// The median of `values` (the mean of the middle two for an even count); 0 when empty.

@@ -11,6 +11,7 @@
 
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/mesh/normals.h"
+#include "quadtri/report/shard.h"
 
 namespace quadtri {
 
@@ -36,12 +37,7 @@ std::vector<StudyMesh> meshesInFolder(const std::filesystem::path& folder);
 
 /// Part I of N of a mesh list: the meshes whose 0-based index i has i % N == I − 1, so that N
 /// machines running 1/N ... N/N together measure every mesh once.
-struct StudyShard {
-  size_t index = 1, count = 1;
-  /// Parses "I/N" with 1 ≤ I ≤ N; throws Error otherwise.
-  static StudyShard parse(const std::string& text);
-  bool holds(size_t meshIndex) const { return meshIndex % count == index - 1; }
-};
+using StudyShard = Shard;
 
 /// Reported when a mesh starts and when it is finished; `done` counts finished meshes of
 /// `total` (the shard's).
