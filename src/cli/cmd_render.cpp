@@ -118,7 +118,7 @@ Action addRenderCommand(CLI::App& app) {
 
     // Checkpoints and resuming: a state is only resumed by the render that saved it.
     const std::optional<std::string>& modelOverride = settings.model;
-    const RenderKeys keys = renderKeys(description, options, modelOverride);
+    const RenderKeys keys = renderKeys(description, options, modelOverride, &built.fileDigests);
     const uint64_t key = keys.render;
     std::optional<RenderState> resumed;
     if (!opt->resume.empty()) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/fnv1a.h"
 
 #ifndef QUADTRI_VERSION
 #error "QUADTRI_VERSION is set by src/scene/CMakeLists.txt"
@@ -13,20 +14,12 @@
 namespace quadtri {
 namespace {
 
-/// 64-bit FNV-1a.
-struct Fnv1a {
-  uint64_t hash = 0xcbf29ce484222325ULL;
-  void bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) hash = (hash ^ p[i]) * 0x100000001b3ULL;
-  }
-};
-
 /// The key of the render (its crop window) and of the whole film at once: the same bytes go
 /// into both hashes but the crop window's, so the scene file and every mesh file are read
 /// once for both.
 class KeyPair final : public KeyWriter {
  public:
+  explicit KeyPair(const FileDigests* known) : known_(known) {}
   void bytes(const void* data, size_t n) override {
     render_.bytes(data, n);
     film_.bytes(data, n);
@@ -44,17 +37,27 @@ class KeyPair final : public KeyWriter {
   void addMatrix(const Eigen::DenseBase<Derived>& m) {
     for (Eigen::Index i = 0; i < m.size(); ++i) add(double(m.derived().data()[i]));
   }
+  /// The file's digest (FileDigest: the FNV-1a of its bytes and their count): the one its
+  /// loader recorded while reading it, or read here.
   void file(const std::filesystem::path& path) override {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("{}: cannot read it to identify the render", path.string());
-    std::vector<char> block(size_t(1) << 16);
-    uint64_t total = 0;
-    while (in) {
-      in.read(block.data(), std::streamsize(block.size()));
-      bytes(block.data(), size_t(in.gcount()));
-      total += uint64_t(in.gcount());
+    FileDigest digest;
+    if (const auto it = known_ ? known_->find(path) : FileDigests::const_iterator();
+        known_ && it != known_->end()) {
+      digest = it->second;
+    } else {
+      std::ifstream in(path, std::ios::binary);
+      if (!in) fail("{}: cannot read it to identify the render", path.string());
+      std::vector<char> block(size_t(1) << 16);
+      Fnv1a h;
+      while (in) {
+        in.read(block.data(), std::streamsize(block.size()));
+        h.bytes(block.data(), size_t(in.gcount()));
+        digest.bytes += uint64_t(in.gcount());
+      }
+      digest.hash = h.hash;
     }
-    add(total);
+    add(digest.hash);
+    add(digest.bytes);
   }
   /// A value that differs between the two: the render's crop field and the whole film's.
   void addEach(int renderValue, int filmValue) {
@@ -64,14 +67,15 @@ class KeyPair final : public KeyWriter {
   RenderKeys keys() const { return {render_.hash, film_.hash}; }
 
  private:
+  const FileDigests* known_;
   Fnv1a render_, film_;
 };
 
 }  // namespace
 
 RenderKeys renderKeys(const SceneDescription& d, const RenderOptions& options,
-                      const std::optional<std::string>& modelOverride) {
-  KeyPair h;
+                      const std::optional<std::string>& modelOverride, const FileDigests* files) {
+  KeyPair h(files);
   h.add(std::string("quadtri " QUADTRI_VERSION " render state"));
   h.file(d.file);
   const SensorDesc& s = d.sensor;

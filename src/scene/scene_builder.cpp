@@ -79,9 +79,15 @@ BuiltScene buildScene(const SceneDescription& description,
     at(s.location, what, [&] {
       if (s.bsdf >= bsdfs.size()) fail("BSDF index {} out of range", s.bsdf);
       if (!s.params) fail("no shape parameters");
-      ShapeBuildContext context{
-          scene,         s,      bsdfs[s.bsdf],        s.location + " " + what,
-          modelOverride, budget, built.inputTriangles, built.warnings};
+      ShapeBuildContext context{scene,
+                                s,
+                                bsdfs[s.bsdf],
+                                s.location + " " + what,
+                                modelOverride,
+                                budget,
+                                built.inputTriangles,
+                                built.warnings,
+                                built.fileDigests};
       s.params->build(context);
     });
   }

@@ -31,6 +31,7 @@ void MeshFileShapeParams::build(ShapeBuildContext& context) const {
     mesh.normalIndices.clear();
   }
   context.inputTriangles += mesh.triangleCount();
+  if (mesh.fileDigest.bytes > 0) context.fileDigests[filename] = mesh.fileDigest;
   if (std::optional<std::string> repaired =
           repairWarning(mesh, fmt::format("{} {}", context.desc.location, filename.string())))
     context.warnings.push_back(std::move(*repaired));

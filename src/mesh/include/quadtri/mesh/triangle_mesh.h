@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "quadtri/math/fnv1a.h"
 #include "quadtri/math/vec.h"
 #include "quadtri/mesh/mesh_repair.h"
 
@@ -56,6 +57,9 @@ struct TriangleMesh {
   std::vector<Tri> normalIndices;  ///< one per triangle; empty means "no shading normals"
   /// What the loader repaired or found (mesh_repair.h); all zero for a built mesh.
   MeshRepairs repairs;
+  /// The digest of the file's bytes as loadMesh read them (render keys use it instead of
+  /// reading the file again); zero for a mesh not read from a file.
+  FileDigest fileDigest;
 
   size_t triangleCount() const { return triangles.size(); }
   bool hasNormals() const { return !normalIndices.empty(); }

@@ -122,6 +122,7 @@ struct ShapeBuildContext {
   MemoryBudget& budget;                             ///< --max-memory
   size_t& inputTriangles;              ///< BuiltScene::inputTriangles (mesh files add theirs)
   std::vector<std::string>& warnings;  ///< BuiltScene::warnings
+  FileDigests& fileDigests;            ///< BuiltScene::fileDigests (mesh files add theirs)
 };
 
 /// A shape's parameters (besides the placement all shapes share, in ShapeDesc).

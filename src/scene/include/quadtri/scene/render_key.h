@@ -6,14 +6,16 @@
 #include <optional>
 #include <string>
 
+#include "quadtri/math/fnv1a.h"
 #include "quadtri/render/renderer.h"
 #include "quadtri/scene/scene_description.h"
 
 namespace quadtri {
 
 /// A 64-bit FNV-1a hash of everything the image depends on: quadtri's version, the scene
-/// file's bytes, every value of the description (so included files and -D values count), the
-/// bytes of every mesh file it names, the model override, and the options' samples per pixel,
+/// file's digest (FileDigest: the FNV-1a of its bytes and their count), every value of the
+/// description (so included files and -D values count), the digest of every mesh file it names,
+/// the model override, and the options' samples per pixel,
 /// seed and reconstruction filter. A field added to SceneDescription must be added here too
 /// (the scene file's bytes catch edits to the file, not -D or command-line overrides). Threads, the
 /// time limit and checkpoints do not count: the image does not depend on them. Throws Error naming
@@ -33,8 +35,11 @@ struct RenderKeys {
   uint64_t render = 0;  ///< renderKey
   uint64_t film = 0;    ///< filmRenderKey
 };
+/// `files`, when given, holds the digests of files already read (BuiltScene::fileDigests, from
+/// the mesh loader), so that they are not read again; the keys are the same either way.
 RenderKeys renderKeys(const SceneDescription& description, const RenderOptions& options,
-                      const std::optional<std::string>& modelOverride);
+                      const std::optional<std::string>& modelOverride,
+                      const FileDigests* files = nullptr);
 
 /// Throws Error naming `path` unless `state` was saved by a render with this key and image
 /// size.

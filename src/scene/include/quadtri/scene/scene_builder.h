@@ -22,6 +22,9 @@ struct BuiltScene {
   /// One line per obj/ply shape whose model folds or falls back more than the conversion
   /// warning allows (conversionWarning, corner_stats.h), naming the shape's element.
   std::vector<std::string> warnings;
+  /// The digest of every mesh file as its loader read it, for renderKeys (so that the render
+  /// key does not read the files again).
+  FileDigests fileDigests;
 };
 
 /// Builds every shape, BSDF and emitter. obj/ply meshes are loaded with their `normals`
