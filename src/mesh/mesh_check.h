@@ -47,10 +47,11 @@ MeshFileInfo inspectMeshBytes(const std::filesystem::path& path, std::string_vie
 std::string readMeshFile(const std::filesystem::path& path);
 
 /// A plain OBJ file as Assimp's OBJ importer lays it out: one vertex per face corner, in face
-/// order (triangle f is vertices 3f, 3f+1, 3f+2), with the corner's normal when the file's
-/// faces give normals.
+/// order (triangle f is vertices 3f, 3f+1, 3f+2); vertex i at the file's v line pointOf[i] and,
+/// when the file's faces give normals, with its vn line normalOf[i] (0-based).
 struct ObjCorners {
-  std::vector<aiVector3D> vertices, normals;
+  std::vector<aiVector3D> points, normals;
+  std::vector<uint32_t> pointOf, normalOf;
 };
 
 /// Reads an OBJ file that validateObj has accepted (inspectMeshBytes) natively, when it holds

@@ -101,14 +101,23 @@ std::vector<uint32_t> firstEqual(const std::vector<std::array<T, 3>>& points) {
 }
 
 // One mesh as a reader gives it (Assimp's post-processed scene, or the native OBJ reader): its
-// vertices, their normals (when the file has them) and its triangles. Without faces, vertices
-// 3f, 3f+1 and 3f+2 make triangle f (a corner per vertex, as Assimp's OBJ importer lays them).
+// vertices, their normals (when the file has them) and its triangles. A vertex's position is
+// row pointOf[v] of `points` (row v without pointOf), its normal row normalOf[v] of `normals`
+// likewise: the native reader's vertices are face corners (as Assimp's OBJ importer lays them
+// out), which index the file's v and vn lines. Without faces, vertices 3f, 3f+1 and 3f+2 make
+// triangle f.
 struct Part {
-  const aiVector3D* vertices = nullptr;
+  const aiVector3D* points = nullptr;
+  size_t pointCount = 0;
+  const uint32_t* pointOf = nullptr;
   const aiVector3D* normals = nullptr;
+  size_t normalCount = 0;
+  const uint32_t* normalOf = nullptr;
   size_t vertexCount = 0;
   const aiFace* faces = nullptr;
   size_t faces_ = 0;
+  uint32_t pointRow(size_t v) const { return pointOf ? pointOf[v] : uint32_t(v); }
+  uint32_t normalRow(size_t v) const { return normalOf ? normalOf[v] : uint32_t(v); }
   size_t faceCount() const { return faces ? faces_ : vertexCount / 3; }
   /// Face f's corners; false when it is not a triangle (skipped).
   bool triangle(size_t f, std::array<uint32_t, 3>& out) const {
@@ -122,31 +131,44 @@ struct Part {
   }
 };
 
+// Row bases of `count(part)` rows per part, and the total (over 2^32 - 1: an error).
+template <typename Count>
+std::vector<size_t> bases(const std::string& name, const std::vector<Part>& parts,
+                          const Count& count) {
+  std::vector<size_t> base(parts.size() + 1, 0);
+  for (size_t m = 0; m < parts.size(); ++m) base[m + 1] = base[m] + count(parts[m]);
+  if (base.back() > size_t(std::numeric_limits<uint32_t>::max()))
+    fail("{}: {} vertices, more than the {} a mesh can index", name, base.back(),
+         std::numeric_limits<uint32_t>::max());
+  return base;
+}
+
 // The welded mesh of the parts: positions welded by exact equality and numbered by first
-// appearance (part by part, vertex by vertex); normals (allHaveNormals) welded likewise, each
-// part's new ones numbered before the face normals that replace its broken ones.
+// appearance (part by part, vertex by vertex), each with the value of its first vertex; normals
+// (allHaveNormals) welded likewise, each part's new ones numbered before the face normals that
+// replace its broken ones.
 TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
                        bool allHaveNormals) {
-  // Every mesh's vertices in one list (mesh by mesh), the first non-finite one an error.
-  std::vector<size_t> base(parts.size() + 1, 0);
-  for (size_t m = 0; m < parts.size(); ++m) base[m + 1] = base[m] + parts[m].vertexCount;
-  const size_t total = base.back();
-  if (total > size_t(std::numeric_limits<uint32_t>::max()))
-    fail("{}: {} vertices, more than the {} a mesh can index", name, total,
-         std::numeric_limits<uint32_t>::max());
+  const std::vector<size_t> base = bases(name, parts, [](const Part& p) { return p.vertexCount; });
+  const std::vector<size_t> pointBase =
+      bases(name, parts, [](const Part& p) { return p.pointCount; });
+  const std::vector<size_t> normalBase =
+      bases(name, parts, [&](const Part& p) { return allHaveNormals ? p.normalCount : 0; });
   // Positions as Assimp holds them (floats), normals as the mesh keeps them (unit doubles).
-  std::vector<std::array<float, 3>> pointKeys(total);
-  std::vector<std::array<double, 3>> normalKeys(allHaveNormals ? total : 0);
-  std::vector<char> normalOk(allHaveNormals ? total : 0, 0);
+  std::vector<std::array<float, 3>> pointKeys(pointBase.back());
+  std::vector<std::array<double, 3>> normalKeys(normalBase.back());
+  std::vector<char> normalOk(normalBase.back(), 0);
   for (size_t m = 0; m < parts.size(); ++m) {
-    const Part& am = parts[m];
-    parallelFor(size_t(0), size_t(am.vertexCount), [&](size_t v) {
-      const size_t i = base[m] + v;
-      pointKeys[i] = {am.vertices[v].x, am.vertices[v].y, am.vertices[v].z};
-      if (!allHaveNormals) return;
-      const Vec3 n(am.normals[v].x, am.normals[v].y, am.normals[v].z);
+    const Part& part = parts[m];
+    parallelFor(size_t(0), part.pointCount, [&](size_t r) {
+      pointKeys[pointBase[m] + r] = {part.points[r].x, part.points[r].y, part.points[r].z};
+    });
+    if (!allHaveNormals) continue;
+    parallelFor(size_t(0), part.normalCount, [&](size_t r) {
+      const Vec3 n(part.normals[r].x, part.normals[r].y, part.normals[r].z);
       // A zero or broken normal in the file is replaced by the face normal below; its key (zero)
       // matches no unit normal.
+      const size_t i = normalBase[m] + r;
       normalOk[i] = allFinite(n) && n.norm() > 1e-12;
       const Vec3 unit = normalOk[i] ? Vec3(n.normalized()) : Vec3::Zero();
       normalKeys[i] = {unit.x(), unit.y(), unit.z()};
@@ -154,56 +176,63 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
   }
   for (size_t m = 0; m < parts.size(); ++m)
     for (size_t v = 0; v < parts[m].vertexCount; ++v) {
-      const aiVector3D& p = parts[m].vertices[v];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      const std::array<float, 3>& p = pointKeys[pointBase[m] + parts[m].pointRow(v)];
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
         fail("{}: vertex {} of mesh {} has a non-finite coordinate", name, v, m);
     }
-  // Welded by exact equality, numbered by first appearance.
+  // Welded by exact equality (the rows of equal points have one first row), numbered by the
+  // first vertex that uses them.
   const std::vector<uint32_t> firstPoint = firstEqual(pointKeys);
   const std::vector<uint32_t> firstNormal = firstEqual(normalKeys);
-  std::vector<std::array<float, 3>>().swap(pointKeys);
-  std::vector<std::array<double, 3>>().swap(normalKeys);
   TriangleMesh mesh;
-  std::vector<uint32_t> pos(total), nrm(allHaveNormals ? total : 0);
-  for (size_t m = 0; m < parts.size(); ++m)
-    for (size_t v = 0; v < parts[m].vertexCount; ++v) {
-      const size_t i = base[m] + v;
-      if (firstPoint[i] == i) {
-        pos[i] = uint32_t(mesh.positions.size());
-        const aiVector3D& p = parts[m].vertices[v];
-        mesh.positions.emplace_back(p.x, p.y, p.z);
-      } else {
-        pos[i] = pos[firstPoint[i]];
+  std::vector<uint32_t> pos(base.back()), nrm(allHaveNormals ? base.back() : 0);
+  {
+    std::vector<uint32_t> idOfRow(pointBase.back(), ~0u);
+    for (size_t m = 0; m < parts.size(); ++m)
+      for (size_t v = 0; v < parts[m].vertexCount; ++v) {
+        const size_t row = pointBase[m] + parts[m].pointRow(v);
+        uint32_t& id = idOfRow[firstPoint[row]];
+        if (id == ~0u) {
+          id = uint32_t(mesh.positions.size());
+          const std::array<float, 3>& p = pointKeys[row];
+          mesh.positions.emplace_back(p[0], p[1], p[2]);
+        }
+        pos[base[m] + v] = id;
       }
-    }
+  }
+  std::vector<std::array<float, 3>>().swap(pointKeys);
+  std::vector<uint32_t> normalIdOfRow(normalBase.back(), ~0u);
   size_t triangles = 0;
   for (size_t m = 0; m < parts.size(); ++m) triangles += parts[m].faceCount();
   mesh.triangles.reserve(triangles);
   if (allHaveNormals) mesh.normalIndices.reserve(triangles);
   for (size_t m = 0; m < parts.size(); ++m) {
-    const Part& am = parts[m];
+    const Part& part = parts[m];
     // Normals are numbered mesh by mesh: the new ones of this mesh's vertices, then the face
     // normals that replace its broken ones.
     if (allHaveNormals)
-      for (size_t v = base[m]; v < base[m + 1]; ++v) {
-        if (!normalOk[v]) {
-          nrm[v] = ~0u;
-        } else if (firstNormal[v] == v) {
-          nrm[v] = uint32_t(mesh.normals.size());
-          const aiVector3D& n = parts[m].normals[v - base[m]];
-          mesh.normals.push_back(Vec3(n.x, n.y, n.z).normalized());
-        } else {
-          nrm[v] = nrm[firstNormal[v]];
+      for (size_t v = 0; v < part.vertexCount; ++v) {
+        const size_t row = normalBase[m] + part.normalRow(v);
+        if (!normalOk[row]) {
+          nrm[base[m] + v] = ~0u;
+          continue;
         }
+        uint32_t& id = normalIdOfRow[firstNormal[row]];
+        if (id == ~0u) {
+          id = uint32_t(mesh.normals.size());
+          const std::array<double, 3>& n = normalKeys[row];
+          mesh.normals.emplace_back(n[0], n[1], n[2]);
+        }
+        nrm[base[m] + v] = id;
       }
     const size_t b = base[m];
-    for (size_t f = 0; f < am.faceCount(); ++f) {
+    for (size_t f = 0; f < part.faceCount(); ++f) {
       std::array<uint32_t, 3> face{};
-      if (!am.triangle(f, face)) continue;
+      if (!part.triangle(f, face)) continue;
       for (unsigned k = 0; k < 3; ++k)
-        if (face[k] >= am.vertexCount)
+        if (face[k] >= part.vertexCount)
           fail("{}: face {} of mesh {} refers to vertex {}, but the mesh has {} vertices", name, f,
-               m, face[k], am.vertexCount);
+               m, face[k], part.vertexCount);
       mesh.triangles.push_back({pos[b + face[0]], pos[b + face[1]], pos[b + face[2]]});
       if (allHaveNormals) {
         Tri ni{nrm[b + face[0]], nrm[b + face[1]], nrm[b + face[2]]};
@@ -253,8 +282,10 @@ TriangleMesh loadWithAssimp(const std::string& name, const std::string& ext,
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* am = scene->mMeshes[m];
     if (!am->HasNormals()) allHaveNormals = false;
-    parts[m].vertices = am->mVertices;
+    parts[m].points = am->mVertices;
+    parts[m].pointCount = am->mNumVertices;
     parts[m].normals = am->mNormals;
+    parts[m].normalCount = am->mNormals ? am->mNumVertices : 0;
     parts[m].vertexCount = am->mNumVertices;
     parts[m].faces = am->mFaces;
     parts[m].faces_ = am->mNumFaces;
@@ -288,10 +319,14 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
   if (reader == MeshReader::Auto && ext == ".obj") plain = mesh_check::readPlainObj(bytes);
   if (plain) {
     Part part;
-    part.vertices = plain->vertices.data();
-    part.normals = plain->normals.empty() ? nullptr : plain->normals.data();
-    part.vertexCount = plain->vertices.size();
-    mesh = weldParts(name, {part}, part.normals != nullptr);
+    part.points = plain->points.data();
+    part.pointCount = plain->points.size();
+    part.pointOf = plain->pointOf.data();
+    part.normals = plain->normals.data();
+    part.normalCount = plain->normals.size();
+    part.normalOf = plain->normalOf.data();
+    part.vertexCount = plain->pointOf.size();
+    mesh = weldParts(name, {part}, !plain->normalOf.empty());
   } else {
     mesh = loadWithAssimp(name, ext, bytes);
   }

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <charconv>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -63,8 +64,9 @@ std::optional<size_t> objIndex(std::string_view text, size_t count) {
 }  // namespace
 
 std::optional<ObjCorners> readPlainObj(std::string_view text) {
-  std::vector<aiVector3D> v, vn;
   ObjCorners out;
+  std::vector<aiVector3D>& v = out.points;
+  std::vector<aiVector3D>& vn = out.normals;
   int withNormals = -1;  // unknown until the first face; then 0 or 1 for every face
   std::array<std::string_view, 4> tokens;
   size_t next = 0;
@@ -110,18 +112,21 @@ std::optional<ObjCorners> readPlainObj(std::string_view text) {
         const int has = slash2 != std::string_view::npos ? 1 : 0;
         if (withNormals != -1 && withNormals != has) return std::nullopt;
         withNormals = has;
-        out.vertices.push_back(v[*vi]);
+        out.pointOf.push_back(uint32_t(*vi));
         if (has) {
           const std::optional<size_t> ni = objIndex(corner.substr(slash2 + 1), vn.size());
           if (!ni) return std::nullopt;
-          out.normals.push_back(vn[*ni]);
+          out.normalOf.push_back(uint32_t(*ni));
         }
       }
     } else if (key != "vt" && key != "s") {
       return std::nullopt;  // objects, groups, materials, lines, points, ...: Assimp's
     }
   }
-  if (out.vertices.empty()) return std::nullopt;
+  // More than 32-bit indices can count: Assimp's to refuse.
+  if (out.pointOf.empty() || out.points.size() > std::numeric_limits<uint32_t>::max() ||
+      out.normals.size() > std::numeric_limits<uint32_t>::max())
+    return std::nullopt;
   return out;
 }
 
