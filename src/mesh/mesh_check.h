@@ -54,7 +54,8 @@ struct ObjCorners {
   std::vector<uint32_t> pointOf, normalOf;
 };
 
-/// Reads an OBJ file that validateObj has accepted (inspectMeshBytes) natively, when it holds
+/// Reads an OBJ file natively (any bytes are safe; its result is meant for a file that
+/// validateObj accepts, inspectMeshBytes, which may run at the same time), when it holds
 /// only what this reader gives exactly as Assimp does: v lines of three numbers, vn, vt, faces of
 /// three corners, every one with a normal or none, s lines, blank lines and comments at the
 /// start of a line. Numbers are parsed by Assimp's own parser (fast_atoreal_move). Returns

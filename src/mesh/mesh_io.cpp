@@ -25,6 +25,7 @@
 #include "quadtri/io/memory_limit.h"
 #include "quadtri/math/error.h"
 #include "quadtri/math/parallel.h"
+#include "quadtri/math/parallel_invoke.h"
 #include "quadtri/mesh/mesh_reader.h"
 
 namespace quadtri {
@@ -306,17 +307,32 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
   // The file is read once: the checks and Assimp both read these bytes.
   const std::string bytes = mesh_check::readMeshFile(path);
   // The header's counts must fit in the file and the memory they need in the budget before
-  // Assimp allocates for them.
-  const MeshFileInfo info = mesh_check::inspectMeshBytes(path, bytes);
+  // Assimp allocates for them. An OBJ file is read by the native reader (readPlainObj) while it
+  // is checked, when the budget has room for what that reader may hold (its vectors take less
+  // than kPlainObjBytesPerByte per byte of the file); the check's error, if any, is the one
+  // thrown, and the reader's result is only used once the check has passed.
+  constexpr uint64_t kPlainObjBytesPerByte = 8;
+  MeshFileInfo info;
+  std::optional<mesh_check::ObjCorners> plain;
+  bool plainTried = false;
+  const bool plainObj = reader == MeshReader::Auto && ext == ".obj";
+  const uint64_t plainBytes = kPlainObjBytesPerByte * uint64_t(bytes.size());
+  if (plainObj &&
+      (!budget || budget->maxBytes == 0 || budget->usedBytes + plainBytes <= budget->maxBytes)) {
+    parallelInvoke([&] { info = mesh_check::inspectMeshBytes(path, bytes); },
+                   [&] { plain = mesh_check::readPlainObj(bytes); });
+    plainTried = true;
+  } else {
+    info = mesh_check::inspectMeshBytes(path, bytes);
+  }
   // The OBJ pre-pass counts faces exactly; without this, Assimp's refusal ("all meshes are
   // orphaned") would not say what is wrong.
   if (info.format == "OBJ" && info.faces == 0)
     fail("{}: the file holds no faces (no 'f' line); a mesh needs at least one triangle", name);
   if (budget) chargeMeshFile(*budget, info, path);
   TriangleMesh mesh;
-  // A plain OBJ file (mesh_check::readPlainObj) is read here, the same as Assimp reads it.
-  std::optional<mesh_check::ObjCorners> plain;
-  if (reader == MeshReader::Auto && ext == ".obj") plain = mesh_check::readPlainObj(bytes);
+  // A plain OBJ file (mesh_check::readPlainObj) is read natively, the same as Assimp reads it.
+  if (plainObj && !plainTried) plain = mesh_check::readPlainObj(bytes);
   if (plain) {
     Part part;
     part.points = plain->points.data();
