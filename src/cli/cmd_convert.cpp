@@ -1,5 +1,5 @@
 // `quadtri convert MESH --model NAME -o OUT`: converts a mesh with one model and writes the
-// tessellated surface (OBJ, PLY) or the patches themselves (JSON).
+// tessellated surface (OBJ, PLY) or the patches themselves (JSON, or the binary patch table).
 #include <fmt/core.h>
 
 #include <chrono>
@@ -25,11 +25,13 @@ Action addConvertCommand(CLI::App& app) {
       "triangle lattice of level N per patch, N² triangles; default 8), or the input triangles "
       "for flat, shading and shading-offset. JSON output: {\"model\", \"triangles\", "
       "\"tessellation\", \"patches\"} "
-      "with each patch's data.");
+      "with each patch's data. QTP output: the same data as a binary table of fixed-size "
+      "records (README, \"Binary patch table\").");
   sub->add_option("mesh", opt->mesh, "Mesh file (OBJ, PLY, ...) or built-in shape (icosphere:3)")
       ->required();
   sub->add_option("--model", opt->model, "Model")->required()->check(CLI::IsMember(modelNames()));
-  sub->add_option("-o,--output", opt->output, "Output file: .obj, .ply (tessellated) or .json")
+  sub->add_option("-o,--output", opt->output,
+                  "Output file: .obj, .ply (tessellated), .json or .qtp (patches)")
       ->required();
   sub->add_option("--tessellation", opt->tessellation,
                   "Lattice level N (N² triangles per patch) or 'thesis' (50x50 grid, 4802 "
@@ -45,10 +47,12 @@ Action addConvertCommand(CLI::App& app) {
     // The mesh and its model must fit in --max-memory, checked before either is built.
     MemoryBudget budget;
     budget.maxBytes = maxMemory();
-    budget.bytesPerTriangle = modelBytesPerTriangle(
-        opt->model, tessellation,
-        std::filesystem::path(opt->output).extension() == ".json" ? ModelUse::ConvertJson
-                                                                  : ModelUse::ConvertMesh);
+    budget.bytesPerTriangle =
+        modelBytesPerTriangle(opt->model, tessellation,
+                              std::filesystem::path(opt->output).extension() == ".json" ||
+                                      std::filesystem::path(opt->output).extension() == ".qtp"
+                                  ? ModelUse::ConvertJson
+                                  : ModelUse::ConvertMesh);
     BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     if (const std::optional<std::string> repaired = repairWarning(input.mesh, opt->mesh))
       fmt::print(stderr, "warning: {}\n", *repaired);

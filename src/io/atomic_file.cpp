@@ -5,7 +5,9 @@
 #include <atomic>
 #include <cstring>
 #include <fstream>
+#include <vector>
 
+#include "quadtri/io/atomic_stream.h"
 #include "quadtri/math/error.h"
 
 namespace quadtri {
@@ -75,6 +77,20 @@ void writeAtomically(const std::filesystem::path& path,
   }
   unregisterTemporary(slot);
   if (ec) fail("{}: cannot write ({})", path.string(), ec.message());
+}
+
+void writeStreamAtomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream& out)>& write) {
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::vector<char> buffer(size_t(1) << 20);
+    std::ofstream out;
+    out.rdbuf()->pubsetbuf(buffer.data(), std::streamsize(buffer.size()));
+    out.open(tmp, std::ios::binary);
+    if (!out) fail("{}: cannot write", path.string());
+    write(out);
+    out.close();
+    if (!out) fail("{}: cannot write", path.string());
+  });
 }
 
 void writeTextFile(const std::filesystem::path& path, const std::string& text) {

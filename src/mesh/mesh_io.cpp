@@ -1,29 +1,35 @@
 #include "quadtri/mesh/mesh_io.h"
 
+#include <assimp/DefaultIOSystem.h>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <array>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <map>
-#include <sstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <string_view>
 
+#include "mesh_check.h"
 #include "quadtri/io/atomic_file.h"
+#include "quadtri/io/atomic_stream.h"
 #include "quadtri/io/memory_limit.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
+#include "quadtri/math/parallel_invoke.h"
+#include "quadtri/mesh/mesh_reader.h"
 
 namespace quadtri {
 namespace {
-
-struct VecLess {
-  bool operator()(const Vec3& a, const Vec3& b) const {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  }
-};
 
 std::string lowerExtension(const std::filesystem::path& p) {
   std::string ext = p.extension().string();
@@ -31,25 +37,224 @@ std::string lowerExtension(const std::filesystem::path& p) {
   return ext;
 }
 
-}  // namespace
+// Assimp's file system, but the mesh file itself is served from the bytes the loader has read
+// (and checked) already, so the file is read once; any other file it opens (an OBJ's mtllib)
+// comes from the disk as before.
+class BufferIoSystem : public Assimp::IOSystem {
+ public:
+  BufferIoSystem(std::string name, std::string_view bytes)
+      : name_(std::move(name)), bytes_(bytes) {}
+  bool Exists(const char* file) const override { return file == name_ || disk_.Exists(file); }
+  char getOsSeparator() const override { return disk_.getOsSeparator(); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (file == name_ && std::string_view(mode).find_first_of("wa+") == std::string_view::npos)
+      return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(bytes_.data()),
+                                        bytes_.size(), false);
+    return disk_.Open(file, mode);
+  }
+  void Close(Assimp::IOStream* file) override { delete file; }
 
-TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals,
-                      MemoryBudget* budget) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail("{}: no such file", name);
-  const std::string ext = lowerExtension(path);
-  if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
-    fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
-  // The header's counts must fit in the file and the memory they need in the budget before
-  // Assimp allocates for them.
-  const MeshFileInfo info = inspectMeshFile(path);
-  // The OBJ pre-pass counts faces exactly; without this, Assimp's refusal ("all meshes are
-  // orphaned") would not say what is wrong.
-  if (info.format == "OBJ" && info.faces == 0)
-    fail("{}: the file holds no faces (no 'f' line); a mesh needs at least one triangle", name);
-  if (budget) chargeMeshFile(*budget, info, path);
+ private:
+  std::string name_;
+  std::string_view bytes_;
+  mutable Assimp::DefaultIOSystem disk_;
+};
+
+// Numbers equal points by first appearance, as inserting them in order into a std::map keyed by
+// their coordinates would (exact equality; -0 equals +0 and the first one's sign is kept):
+// returns first, first[i] the least index j with points[j] == points[i]. An open-addressing
+// hash table of indices instead of the map: one pass in order, the same answer on any machine.
+template <typename T>
+std::vector<uint32_t> firstEqual(const std::vector<std::array<T, 3>>& points) {
+  const size_t n = points.size();
+  size_t capacity = 16;
+  while (capacity < 2 * n) capacity *= 2;
+  const size_t mask = capacity - 1;
+  std::vector<uint32_t> slots(capacity, ~0u), first(n);
+  const auto hash = [](const std::array<T, 3>& p) {
+    uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (const T c : p) {
+      // +0 for -0, so that equal points hash alike.
+      const double d = c == T(0) ? 0.0 : double(c);
+      uint64_t bits = 0;
+      std::memcpy(&bits, &d, sizeof(bits));
+      h = (h ^ bits) * 0xff51afd7ed558ccdull;
+      h ^= h >> 32;
+    }
+    return size_t(h);
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const std::array<T, 3>& p = points[i];
+    for (size_t s = hash(p) & mask;; s = (s + 1) & mask) {
+      if (slots[s] == ~0u) {
+        slots[s] = uint32_t(i);
+        first[i] = uint32_t(i);
+        break;
+      }
+      const std::array<T, 3>& q = points[slots[s]];
+      if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2]) {
+        first[i] = slots[s];
+        break;
+      }
+    }
+  }
+  return first;
+}
+
+// One mesh as a reader gives it (Assimp's post-processed scene, or the native OBJ reader): its
+// vertices, their normals (when the file has them) and its triangles. A vertex's position is
+// row pointOf[v] of `points` (row v without pointOf), its normal row normalOf[v] of `normals`
+// likewise: the native reader's vertices are face corners (as Assimp's OBJ importer lays them
+// out), which index the file's v and vn lines. Without faces, vertices 3f, 3f+1 and 3f+2 make
+// triangle f.
+struct Part {
+  const aiVector3D* points = nullptr;
+  size_t pointCount = 0;
+  const uint32_t* pointOf = nullptr;
+  const aiVector3D* normals = nullptr;
+  size_t normalCount = 0;
+  const uint32_t* normalOf = nullptr;
+  size_t vertexCount = 0;
+  const aiFace* faces = nullptr;
+  size_t faces_ = 0;
+  uint32_t pointRow(size_t v) const { return pointOf ? pointOf[v] : uint32_t(v); }
+  uint32_t normalRow(size_t v) const { return normalOf ? normalOf[v] : uint32_t(v); }
+  size_t faceCount() const { return faces ? faces_ : vertexCount / 3; }
+  /// Face f's corners; false when it is not a triangle (skipped).
+  bool triangle(size_t f, std::array<uint32_t, 3>& out) const {
+    if (!faces) {
+      out = {uint32_t(3 * f), uint32_t(3 * f + 1), uint32_t(3 * f + 2)};
+      return true;
+    }
+    if (faces[f].mNumIndices != 3) return false;
+    out = {faces[f].mIndices[0], faces[f].mIndices[1], faces[f].mIndices[2]};
+    return true;
+  }
+};
+
+// Row bases of `count(part)` rows per part, and the total (over 2^32 - 1: an error).
+template <typename Count>
+std::vector<size_t> bases(const std::string& name, const std::vector<Part>& parts,
+                          const Count& count) {
+  std::vector<size_t> base(parts.size() + 1, 0);
+  for (size_t m = 0; m < parts.size(); ++m) base[m + 1] = base[m] + count(parts[m]);
+  if (base.back() > size_t(std::numeric_limits<uint32_t>::max()))
+    fail("{}: {} vertices, more than the {} a mesh can index", name, base.back(),
+         std::numeric_limits<uint32_t>::max());
+  return base;
+}
+
+// The welded mesh of the parts: positions welded by exact equality and numbered by first
+// appearance (part by part, vertex by vertex), each with the value of its first vertex; normals
+// (allHaveNormals) welded likewise, each part's new ones numbered before the face normals that
+// replace its broken ones.
+TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
+                       bool allHaveNormals) {
+  const std::vector<size_t> base = bases(name, parts, [](const Part& p) { return p.vertexCount; });
+  const std::vector<size_t> pointBase =
+      bases(name, parts, [](const Part& p) { return p.pointCount; });
+  const std::vector<size_t> normalBase =
+      bases(name, parts, [&](const Part& p) { return allHaveNormals ? p.normalCount : 0; });
+  // Positions as Assimp holds them (floats), normals as the mesh keeps them (unit doubles).
+  std::vector<std::array<float, 3>> pointKeys(pointBase.back());
+  std::vector<std::array<double, 3>> normalKeys(normalBase.back());
+  std::vector<char> normalOk(normalBase.back(), 0);
+  for (size_t m = 0; m < parts.size(); ++m) {
+    const Part& part = parts[m];
+    parallelFor(size_t(0), part.pointCount, [&](size_t r) {
+      pointKeys[pointBase[m] + r] = {part.points[r].x, part.points[r].y, part.points[r].z};
+    });
+    if (!allHaveNormals) continue;
+    parallelFor(size_t(0), part.normalCount, [&](size_t r) {
+      const Vec3 n(part.normals[r].x, part.normals[r].y, part.normals[r].z);
+      // A zero or broken normal in the file is replaced by the face normal below; its key (zero)
+      // matches no unit normal.
+      const size_t i = normalBase[m] + r;
+      normalOk[i] = allFinite(n) && n.norm() > 1e-12;
+      const Vec3 unit = normalOk[i] ? Vec3(n.normalized()) : Vec3::Zero();
+      normalKeys[i] = {unit.x(), unit.y(), unit.z()};
+    });
+  }
+  for (size_t m = 0; m < parts.size(); ++m)
+    for (size_t v = 0; v < parts[m].vertexCount; ++v) {
+      const std::array<float, 3>& p = pointKeys[pointBase[m] + parts[m].pointRow(v)];
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        fail("{}: vertex {} of mesh {} has a non-finite coordinate", name, v, m);
+    }
+  // Welded by exact equality (the rows of equal points have one first row), numbered by the
+  // first vertex that uses them.
+  const std::vector<uint32_t> firstPoint = firstEqual(pointKeys);
+  const std::vector<uint32_t> firstNormal = firstEqual(normalKeys);
+  TriangleMesh mesh;
+  std::vector<uint32_t> pos(base.back()), nrm(allHaveNormals ? base.back() : 0);
+  {
+    std::vector<uint32_t> idOfRow(pointBase.back(), ~0u);
+    for (size_t m = 0; m < parts.size(); ++m)
+      for (size_t v = 0; v < parts[m].vertexCount; ++v) {
+        const size_t row = pointBase[m] + parts[m].pointRow(v);
+        uint32_t& id = idOfRow[firstPoint[row]];
+        if (id == ~0u) {
+          id = uint32_t(mesh.positions.size());
+          const std::array<float, 3>& p = pointKeys[row];
+          mesh.positions.emplace_back(p[0], p[1], p[2]);
+        }
+        pos[base[m] + v] = id;
+      }
+  }
+  std::vector<std::array<float, 3>>().swap(pointKeys);
+  std::vector<uint32_t> normalIdOfRow(normalBase.back(), ~0u);
+  size_t triangles = 0;
+  for (size_t m = 0; m < parts.size(); ++m) triangles += parts[m].faceCount();
+  mesh.triangles.reserve(triangles);
+  if (allHaveNormals) mesh.normalIndices.reserve(triangles);
+  for (size_t m = 0; m < parts.size(); ++m) {
+    const Part& part = parts[m];
+    // Normals are numbered mesh by mesh: the new ones of this mesh's vertices, then the face
+    // normals that replace its broken ones.
+    if (allHaveNormals)
+      for (size_t v = 0; v < part.vertexCount; ++v) {
+        const size_t row = normalBase[m] + part.normalRow(v);
+        if (!normalOk[row]) {
+          nrm[base[m] + v] = ~0u;
+          continue;
+        }
+        uint32_t& id = normalIdOfRow[firstNormal[row]];
+        if (id == ~0u) {
+          id = uint32_t(mesh.normals.size());
+          const std::array<double, 3>& n = normalKeys[row];
+          mesh.normals.emplace_back(n[0], n[1], n[2]);
+        }
+        nrm[base[m] + v] = id;
+      }
+    const size_t b = base[m];
+    for (size_t f = 0; f < part.faceCount(); ++f) {
+      std::array<uint32_t, 3> face{};
+      if (!part.triangle(f, face)) continue;
+      for (unsigned k = 0; k < 3; ++k)
+        if (face[k] >= part.vertexCount)
+          fail("{}: face {} of mesh {} refers to vertex {}, but the mesh has {} vertices", name, f,
+               m, face[k], part.vertexCount);
+      mesh.triangles.push_back({pos[b + face[0]], pos[b + face[1]], pos[b + face[2]]});
+      if (allHaveNormals) {
+        Tri ni{nrm[b + face[0]], nrm[b + face[1]], nrm[b + face[2]]};
+        for (uint32_t& i : ni)
+          if (i == ~0u) {
+            mesh.normals.push_back(mesh.faceNormal(mesh.triangles.size() - 1));
+            i = uint32_t(mesh.normals.size() - 1);
+            ++mesh.repairs.replacedNormals;
+          }
+        mesh.normalIndices.push_back(ni);
+      }
+    }
+  }
+  return mesh;
+}
+
+// Reads the file's bytes with Assimp (its OBJ, PLY, STL and OFF importers).
+TriangleMesh loadWithAssimp(const std::string& name, const std::string& ext,
+                            const std::string& bytes) {
   Assimp::Importer importer;
+  importer.SetIOHandler(new BufferIoSystem(name, bytes));  // the importer owns it
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   // Read first, check every face, then post-process: Assimp's importers keep an index a file
@@ -73,53 +278,73 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
                                        aiProcess_PreTransformVertices);
   if (!scene || !scene->mRootNode)
     fail("{}: cannot read mesh ({})", name, importer.GetErrorString());
-  TriangleMesh mesh;
-  std::map<Vec3, uint32_t, VecLess> weld, normalWeld;
   bool allHaveNormals = scene->mNumMeshes > 0 && ext != ".stl";
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-    if (!scene->mMeshes[m]->HasNormals()) allHaveNormals = false;
+  std::vector<Part> parts(scene->mNumMeshes);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* am = scene->mMeshes[m];
-    std::vector<uint32_t> pos(am->mNumVertices), nrm(am->mNumVertices);
-    for (unsigned v = 0; v < am->mNumVertices; ++v) {
-      const Vec3 p(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
-      if (!allFinite(p)) fail("{}: vertex {} of mesh {} has a non-finite coordinate", name, v, m);
-      auto [it, inserted] = weld.try_emplace(p, uint32_t(mesh.positions.size()));
-      if (inserted) mesh.positions.push_back(p);
-      pos[v] = it->second;
-      if (allHaveNormals) {
-        const Vec3 n(am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z);
-        // A zero or broken normal in the file is replaced by the face normal below (marked ~0u).
-        if (!allFinite(n) || !(n.norm() > 1e-12)) {
-          nrm[v] = ~0u;
-          continue;
-        }
-        auto [nit, ninserted] =
-            normalWeld.try_emplace(n.normalized(), uint32_t(mesh.normals.size()));
-        if (ninserted) mesh.normals.push_back(n.normalized());
-        nrm[v] = nit->second;
-      }
-    }
-    for (unsigned f = 0; f < am->mNumFaces; ++f) {
-      const aiFace& face = am->mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      for (unsigned k = 0; k < 3; ++k)
-        if (face.mIndices[k] >= am->mNumVertices)
-          fail("{}: face {} of mesh {} refers to vertex {}, but the mesh has {} vertices", name, f,
-               m, face.mIndices[k], am->mNumVertices);
-      mesh.triangles.push_back(
-          {pos[face.mIndices[0]], pos[face.mIndices[1]], pos[face.mIndices[2]]});
-      if (allHaveNormals) {
-        Tri ni{nrm[face.mIndices[0]], nrm[face.mIndices[1]], nrm[face.mIndices[2]]};
-        for (uint32_t& i : ni)
-          if (i == ~0u) {
-            mesh.normals.push_back(mesh.faceNormal(mesh.triangles.size() - 1));
-            i = uint32_t(mesh.normals.size() - 1);
-            ++mesh.repairs.replacedNormals;
-          }
-        mesh.normalIndices.push_back(ni);
-      }
-    }
+    if (!am->HasNormals()) allHaveNormals = false;
+    parts[m].points = am->mVertices;
+    parts[m].pointCount = am->mNumVertices;
+    parts[m].normals = am->mNormals;
+    parts[m].normalCount = am->mNormals ? am->mNumVertices : 0;
+    parts[m].vertexCount = am->mNumVertices;
+    parts[m].faces = am->mFaces;
+    parts[m].faces_ = am->mNumFaces;
+  }
+  return weldParts(name, parts, allHaveNormals);
+}
+
+}  // namespace
+
+TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
+                          const NormalOptions& normals, MemoryBudget* budget) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail("{}: no such file", name);
+  const std::string ext = lowerExtension(path);
+  if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
+    fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
+  // The file is read once: the checks and Assimp both read these bytes.
+  const std::string bytes = mesh_check::readMeshFile(path);
+  // The header's counts must fit in the file and the memory they need in the budget before
+  // Assimp allocates for them. An OBJ file is read by the native reader (readPlainObj) while it
+  // is checked, when the budget has room for what that reader may hold (its vectors take less
+  // than kPlainObjBytesPerByte per byte of the file); the check's error, if any, is the one
+  // thrown, and the reader's result is only used once the check has passed.
+  constexpr uint64_t kPlainObjBytesPerByte = 8;
+  MeshFileInfo info;
+  std::optional<mesh_check::ObjCorners> plain;
+  bool plainTried = false;
+  const bool plainObj = reader == MeshReader::Auto && ext == ".obj";
+  const uint64_t plainBytes = kPlainObjBytesPerByte * uint64_t(bytes.size());
+  if (plainObj &&
+      (!budget || budget->maxBytes == 0 || budget->usedBytes + plainBytes <= budget->maxBytes)) {
+    parallelInvoke([&] { info = mesh_check::inspectMeshBytes(path, bytes); },
+                   [&] { plain = mesh_check::readPlainObj(bytes); });
+    plainTried = true;
+  } else {
+    info = mesh_check::inspectMeshBytes(path, bytes);
+  }
+  // The OBJ pre-pass counts faces exactly; without this, Assimp's refusal ("all meshes are
+  // orphaned") would not say what is wrong.
+  if (info.format == "OBJ" && info.faces == 0)
+    fail("{}: the file holds no faces (no 'f' line); a mesh needs at least one triangle", name);
+  if (budget) chargeMeshFile(*budget, info, path);
+  TriangleMesh mesh;
+  // A plain OBJ file (mesh_check::readPlainObj) is read natively, the same as Assimp reads it.
+  if (plainObj && !plainTried) plain = mesh_check::readPlainObj(bytes);
+  if (plain) {
+    Part part;
+    part.points = plain->points.data();
+    part.pointCount = plain->points.size();
+    part.pointOf = plain->pointOf.data();
+    part.normals = plain->normals.data();
+    part.normalCount = plain->normals.size();
+    part.normalOf = plain->normalOf.data();
+    part.vertexCount = plain->pointOf.size();
+    mesh = weldParts(name, {part}, !plain->normalOf.empty());
+  } else {
+    mesh = loadWithAssimp(name, ext, bytes);
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
   repairMesh(mesh);
@@ -130,71 +355,117 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
   return mesh;
 }
 
+TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals,
+                      MemoryBudget* budget) {
+  return loadMeshWith(MeshReader::Auto, path, normals, budget);
+}
+
 void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
   for (const Vec3& p : mesh.positions)
     if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
+  if (ext != ".obj" && ext != ".ply")
+    fail("{}: unsupported output format '{}': expected .obj or .ply", path.string(), ext);
+  // Written as a stream through a buffer of about kFlush bytes, never built whole in memory.
+  constexpr size_t kFlush = size_t(1) << 20;
   if (ext == ".obj") {
-    std::ostringstream out;
-    out.precision(17);
-    out << "# written by quadtri\n";
-    for (const Vec3& p : mesh.positions)
-      out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-    for (const Vec3& n : mesh.normals)
-      out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      out << 'f';
-      for (int k = 0; k < 3; ++k) {
-        out << ' ' << mesh.triangles[t][k] + 1;
-        if (mesh.hasNormals()) out << "//" << mesh.normalIndices[t][k] + 1;
+    writeStreamAtomically(path, [&](std::ostream& out) {
+      fmt::memory_buffer buffer;
+      const auto flush = [&](bool always) {
+        if (!always && buffer.size() < kFlush) return;
+        out.write(buffer.data(), std::streamsize(buffer.size()));
+        buffer.clear();
+      };
+      // %.17g, as an ostream with precision 17 writes a double: every double reads back exactly.
+      fmt::format_to(std::back_inserter(buffer), "# written by quadtri\n");
+      for (const Vec3& p : mesh.positions) {
+        fmt::format_to(std::back_inserter(buffer), "v {:.17g} {:.17g} {:.17g}\n", p.x(), p.y(),
+                       p.z());
+        flush(false);
       }
-      out << '\n';
-    }
-    writeTextFile(path, out.str());
-    return;
-  }
-  if (ext == ".ply") {
-    // PLY has per-vertex attributes only: split normals become duplicated vertices.
-    std::vector<Vec3> pos, nrm;
-    std::vector<Tri> tris;
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> ids;
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      Tri out{};
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t pi = mesh.triangles[t][k];
-        const uint32_t ni = mesh.hasNormals() ? mesh.normalIndices[t][k] : 0;
-        auto [it, inserted] = ids.try_emplace({pi, ni}, uint32_t(pos.size()));
-        if (inserted) {
-          pos.push_back(mesh.positions[pi]);
-          if (mesh.hasNormals()) nrm.push_back(mesh.normals[ni]);
+      for (const Vec3& n : mesh.normals) {
+        fmt::format_to(std::back_inserter(buffer), "vn {:.17g} {:.17g} {:.17g}\n", n.x(), n.y(),
+                       n.z());
+        flush(false);
+      }
+      for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        buffer.push_back('f');
+        for (int k = 0; k < 3; ++k) {
+          fmt::format_to(std::back_inserter(buffer), " {}", mesh.triangles[t][k] + 1);
+          if (mesh.hasNormals())
+            fmt::format_to(std::back_inserter(buffer), "//{}", mesh.normalIndices[t][k] + 1);
         }
-        out[k] = it->second;
+        buffer.push_back('\n');
+        flush(false);
       }
-      tris.push_back(out);
-    }
-    std::ostringstream out(std::ios::binary);
-    out << "ply\nformat binary_little_endian 1.0\ncomment written by quadtri\n"
-        << "element vertex " << pos.size()
-        << "\nproperty float x\nproperty float y\nproperty float z\n";
-    if (!nrm.empty()) out << "property float nx\nproperty float ny\nproperty float nz\n";
-    out << "element face " << tris.size()
-        << "\nproperty list uchar uint vertex_indices\nend_header\n";
-    auto put = [&](const auto& value) {
-      out.write(reinterpret_cast<const char*>(&value), sizeof(value));
-    };
-    for (size_t i = 0; i < pos.size(); ++i) {
-      for (int c = 0; c < 3; ++c) put(float(pos[i][c]));
-      if (!nrm.empty())
-        for (int c = 0; c < 3; ++c) put(float(nrm[i][c]));
-    }
-    for (const Tri& t : tris) {
-      put(uint8_t(3));
-      for (uint32_t i : t) put(i);
-    }
-    writeTextFile(path, out.str());
+      flush(true);
+    });
     return;
   }
-  fail("{}: unsupported output format '{}': expected .obj or .ply", path.string(), ext);
+  // PLY has per-vertex attributes only: split normals become duplicated vertices, one per
+  // distinct (position, normal) pair, numbered by first appearance in corner order.
+  const size_t corners = 3 * mesh.triangles.size();
+  std::vector<uint32_t> vertexOf(corners);  // corner -> PLY vertex
+  std::vector<uint32_t> cornerOf;           // PLY vertex -> its first corner
+  if (!mesh.hasNormals()) {
+    std::vector<uint32_t> id(mesh.positions.size(), ~0u);
+    for (size_t c = 0; c < corners; ++c) {
+      uint32_t& v = id[mesh.triangles[c / 3][c % 3]];
+      if (v == ~0u) {
+        v = uint32_t(cornerOf.size());
+        cornerOf.push_back(uint32_t(c));
+      }
+      vertexOf[c] = v;
+    }
+  } else {
+    std::vector<std::array<uint32_t, 3>> pairs(corners);
+    parallelFor(size_t(0), corners, [&](size_t c) {
+      pairs[c] = {mesh.triangles[c / 3][c % 3], mesh.normalIndices[c / 3][c % 3], 0};
+    });
+    const std::vector<uint32_t> head = firstEqual(pairs);
+    for (size_t c = 0; c < corners; ++c) {
+      if (head[c] == c) {
+        vertexOf[c] = uint32_t(cornerOf.size());
+        cornerOf.push_back(uint32_t(c));
+      } else {
+        vertexOf[c] = vertexOf[head[c]];
+      }
+    }
+  }
+  writeStreamAtomically(path, [&](std::ostream& out) {
+    std::string buffer = fmt::format(
+        "ply\nformat binary_little_endian 1.0\ncomment written by quadtri\n"
+        "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n{}"
+        "element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
+        cornerOf.size(),
+        mesh.hasNormals() ? "property float nx\nproperty float ny\nproperty float nz\n" : "",
+        mesh.triangles.size());
+    const auto put = [&](const auto& value) {
+      const size_t at = buffer.size();
+      buffer.resize(at + sizeof(value));
+      std::memcpy(buffer.data() + at, &value, sizeof(value));  // little-endian, as on x86 and ARM
+    };
+    const auto flush = [&](bool always) {
+      if (!always && buffer.size() < kFlush) return;
+      out.write(buffer.data(), std::streamsize(buffer.size()));
+      buffer.clear();
+    };
+    for (const uint32_t c : cornerOf) {
+      const Vec3& p = mesh.positions[mesh.triangles[c / 3][c % 3]];
+      for (int k = 0; k < 3; ++k) put(float(p[k]));
+      if (mesh.hasNormals()) {
+        const Vec3& n = mesh.normals[mesh.normalIndices[c / 3][c % 3]];
+        for (int k = 0; k < 3; ++k) put(float(n[k]));
+      }
+      flush(false);
+    }
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      put(uint8_t(3));
+      for (int k = 0; k < 3; ++k) put(vertexOf[3 * t + k]);
+      flush(false);
+    }
+    flush(true);
+  });
 }
 
 }  // namespace quadtri

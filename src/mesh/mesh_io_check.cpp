@@ -61,6 +61,32 @@ bool parseFinite(std::string_view word) {
   return ec == std::errc() && ptr == end && std::isfinite(value);
 }
 
+MemoryStream::Buffer::Buffer(std::string_view bytes) {
+  char* begin = const_cast<char*>(bytes.data());  // read only: no put area is set
+  setg(begin, begin, begin + bytes.size());
+}
+
+MemoryStream::Buffer::pos_type MemoryStream::Buffer::seekoff(off_type off,
+                                                             std::ios_base::seekdir dir,
+                                                             std::ios_base::openmode which) {
+  const off_type size = egptr() - eback();
+  const off_type base = dir == std::ios_base::beg   ? 0
+                        : dir == std::ios_base::cur ? gptr() - eback()
+                                                    : size;
+  if (!(which & std::ios_base::in) || off < -base || off > size - base) return off_type(-1);
+  setg(eback(), eback() + (base + off), egptr());
+  return base + off;
+}
+
+MemoryStream::Buffer::pos_type MemoryStream::Buffer::seekpos(pos_type pos,
+                                                             std::ios_base::openmode which) {
+  return seekoff(off_type(pos), std::ios_base::beg, which);
+}
+
+MemoryStream::MemoryStream(std::string_view bytes) : std::istream(nullptr), buffer_(bytes) {
+  rdbuf(&buffer_);
+}
+
 }  // namespace mesh_check
 
 namespace {
@@ -77,8 +103,7 @@ std::string lowerExtension(const std::filesystem::path& p) {
 // to the end of their line, keeping its offset; reads in small blocks, allocates per word only.
 class WordReader {
  public:
-  explicit WordReader(const std::filesystem::path& path) : in_(path, std::ios::binary) {}
-  bool good() const { return bool(in_); }
+  explicit WordReader(std::string_view bytes) : in_(bytes) {}
   uint64_t offset() const { return offset_; }
   /// The next word, or "" at the end of the file. Words longer than 256 bytes are cut there.
   std::string next() {
@@ -110,7 +135,7 @@ class WordReader {
       while (c != EOF && c != '\n' && c != '\r') c = get();
     }
   }
-  std::ifstream in_;
+  MemoryStream in_;
   uint64_t offset_ = 0;
 };
 
@@ -118,10 +143,10 @@ class WordReader {
 // `faces` lines "k i1 .. ik" with k ≥ 1 and every index below `vertices` (blank lines and
 // '#' comments skipped). Assimp's OFF importer reads past its buffers on a short vertex line
 // and keeps out-of-range indices, so each is refused here with its line.
-void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint64_t dims,
-                  uint64_t vertices, uint64_t faces) {
+void checkOffBody(const std::filesystem::path& path, std::string_view bytes, uint64_t headerBytes,
+                  uint64_t dims, uint64_t vertices, uint64_t faces) {
   const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
+  MemoryStream in(bytes);
   uint64_t lineNo = 1;
   int last = '\n';
   for (uint64_t i = 0; i < headerBytes; ++i)
@@ -163,10 +188,10 @@ void checkOffBody(const std::filesystem::path& path, uint64_t headerBytes, uint6
 
 // OFF: [ST][C][N][4][n]OFF, [dimension], vertex count, face count, edge count, then one vertex
 // per line and one face "k i1 .. ik" per line (what Assimp's OFF importer reads).
-MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
+MeshFileInfo inspectOff(const std::filesystem::path& path, std::string_view bytes) {
   const std::string name = path.string();
-  WordReader in(path);
-  if (!in.good()) fail("{}: cannot open file", name);
+  const uint64_t fileBytes = bytes.size();
+  WordReader in(bytes);
   std::string word = in.next();
   bool texcoords = false, colours = false, normals = false, homogeneous = false, dimension = false;
   std::string_view key = word;
@@ -217,7 +242,7 @@ MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
         name, *vertices, *faces, need, perVertex, perFace, fileBytes);
   checkAssimpCount(name, "OFF", *vertices, "vertices");
   checkAssimpCount(name, "OFF", *faces, "faces");
-  checkOffBody(path, headerBytes, dims, *vertices, *faces);
+  checkOffBody(path, bytes, headerBytes, dims, *vertices, *faces);
   MeshFileInfo info;
   info.format = "OFF";
   info.fileBytes = fileBytes;
@@ -230,7 +255,7 @@ MeshFileInfo inspectOff(const std::filesystem::path& path, uint64_t fileBytes) {
 
 // ASCII STL: every facet ... endfacet holds exactly three `vertex` entries of three numbers
 // (Assimp leaks its mesh when it throws on one that does not); returns the facets.
-uint64_t checkAsciiStlFacets(std::ifstream& in, const std::string& name) {
+uint64_t checkAsciiStlFacets(std::istream& in, const std::string& name) {
   uint64_t facets = 0;
   int vertices = 0;
   bool open = false;
@@ -262,10 +287,10 @@ uint64_t checkAsciiStlFacets(std::ifstream& in, const std::string& name) {
 
 // STL: binary when the size is exactly 84 + 50 × the count at byte 80 (as Assimp decides, but
 // without its 32-bit wrap), ASCII when it starts with "solid".
-MeshFileInfo inspectStl(const std::filesystem::path& path, uint64_t fileBytes) {
+MeshFileInfo inspectStl(const std::filesystem::path& path, std::string_view bytes) {
   const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("{}: cannot open file", name);
+  const uint64_t fileBytes = bytes.size();
+  MemoryStream in(bytes);
   std::array<char, 84> header{};
   in.read(header.data(), header.size());
   const size_t got = size_t(in.gcount());
@@ -312,11 +337,16 @@ MeshFileInfo inspectStl(const std::filesystem::path& path, uint64_t fileBytes) {
 }
 
 // Checks one face-vertex index against the `count` elements defined above it; returns an error
-// text (what was wrong, expected what) or "" when the index is valid.
+// text (what was wrong, expected what) or "" when the index is valid. The valid case, every
+// index of a large file, formats nothing.
 std::string checkObjIndex(std::string_view text, long count, const char* what, const char* plural) {
   long index = 0;
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(text.data(), end, index);
+  if (ec == std::errc() && ptr == end && index != 0) {
+    const long resolved = index > 0 ? index : count + index + 1;
+    if (resolved >= 1 && resolved <= count) return {};
+  }
   const std::string range = count == 0 ? fmt::format("a {} defined above (none yet)", what)
                                        : fmt::format(
                                              "1..{} or -{}..-1 (OBJ refers only to {} "
@@ -326,27 +356,45 @@ std::string checkObjIndex(std::string_view text, long count, const char* what, c
     return fmt::format("{} index {} is out of range, expected {}", what, text, range);
   if (ec != std::errc() || ptr != end)
     return fmt::format("{} index '{}' is not an integer, expected {}", what, text, range);
-  const long resolved = index > 0 ? index : count + index + 1;
-  if (index == 0 || resolved < 1 || resolved > count)
-    return fmt::format("{} index {} is out of range, expected {}", what, index, range);
-  return {};
+  return fmt::format("{} index {} is out of range, expected {}", what, index, range);
+}
+
+// isspace in the C locale, inline.
+constexpr bool isSpace(char c) {
+  return c == ' ' || (c >= '\t' && c <= '\r');
+}
+
+// Splits a line into whitespace-separated words, reusing `w`'s storage.
+void splitWords(std::string_view line, std::vector<std::string_view>& w) {
+  w.clear();
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && isSpace(line[i])) ++i;
+    const size_t start = i;
+    while (i < line.size() && !isSpace(line[i])) ++i;
+    if (i > start) w.push_back(line.substr(start, i - start));
+  }
 }
 
 // Our own checks on an OBJ file before Assimp reads it, so that an error names its line:
 // Assimp accepts or misreports some bad input (a coordinate that is no number, a short face,
-// an index past the vertices). Returns the counts.
-MeshFileInfo validateObj(const std::filesystem::path& path, uint64_t fileBytes) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("{}: cannot open file", path.string());
+// an index past the vertices). Returns the counts. Lines end at '\n' (as std::getline ends
+// them); nothing is allocated per line.
+MeshFileInfo validateObj(const std::filesystem::path& path, std::string_view text) {
   const std::string name = path.string();
   long counts[3] = {0, 0, 0};  // v, vt, vn defined so far
   MeshFileInfo info;
   info.format = "OBJ";
-  info.fileBytes = fileBytes;
-  std::string line;
-  for (long lineNo = 1; std::getline(in, line); ++lineNo) {
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const std::vector<std::string_view> w = words(line);
+  info.fileBytes = text.size();
+  std::vector<std::string_view> w;
+  size_t next = 0;
+  for (long lineNo = 1; next < text.size(); ++lineNo) {
+    const size_t newline = std::min(text.find('\n', next), text.size());
+    std::string_view line = text.substr(next, newline - next);
+    next = newline + 1;
+    if (const size_t hash = line.find('#'); hash != std::string_view::npos)
+      line = line.substr(0, hash);
+    splitWords(line, w);
     if (w.empty()) continue;
     const std::string_view key = w[0];
     if (key == "v" || key == "vn" || key == "vt") {
@@ -411,21 +459,44 @@ MeshFileInfo validateObj(const std::filesystem::path& path, uint64_t fileBytes) 
 
 }  // namespace
 
-MeshFileInfo inspectMeshFile(const std::filesystem::path& path) {
+namespace mesh_check {
+
+std::string readMeshFile(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::error_code ec;
   const uint64_t fileBytes = std::filesystem::file_size(path, ec);
   if (ec) fail("{}: cannot read the file's size ({})", name, ec.message());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("{}: cannot open file", name);
+  std::string bytes(size_t(fileBytes), '\0');
+  in.read(bytes.data(), std::streamsize(bytes.size()));
+  if (uint64_t(in.gcount()) != fileBytes)
+    fail("{}: cannot read the file ({} of its {} bytes read)", name, in.gcount(), fileBytes);
+  return bytes;
+}
+
+}  // namespace mesh_check
+
+MeshFileInfo inspectMeshFile(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
+    fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", path.string(), ext);
+  return inspectMeshBytes(path, readMeshFile(path));
+}
+
+MeshFileInfo mesh_check::inspectMeshBytes(const std::filesystem::path& path,
+                                          std::string_view bytes) {
+  const std::string name = path.string();
   const std::string ext = lowerExtension(path);
   MeshFileInfo info;
   if (ext == ".obj")
-    info = validateObj(path, fileBytes);
+    info = validateObj(path, bytes);
   else if (ext == ".off")
-    info = inspectOff(path, fileBytes);
+    info = inspectOff(path, bytes);
   else if (ext == ".ply")
-    info = mesh_check::inspectPly(path, fileBytes);
+    info = mesh_check::inspectPly(path, bytes);
   else if (ext == ".stl")
-    info = inspectStl(path, fileBytes);
+    info = inspectStl(path, bytes);
   else
     fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
   info.loadBytes = estimateLoadBytes(info);
@@ -433,7 +504,8 @@ MeshFileInfo inspectMeshFile(const std::filesystem::path& path) {
 }
 
 uint64_t estimateLoadBytes(const MeshFileInfo& info) {
-  // Bytes per element beyond the file itself (which Assimp reads into memory whole): Assimp's
+  // Bytes per element beyond the file itself, held twice: the loader reads it into memory once
+  // for the checks and for Assimp, which copies it into its own buffer. Assimp's
   // arrays before and after triangulation and pre-transformation, TriangleMesh's positions,
   // normals and triangles with the maps that weld them. Measured with getrusage's peak
   // resident size on a 1,310,720-triangle icosphere in each format, which these reproduce
@@ -450,7 +522,7 @@ uint64_t estimateLoadBytes(const MeshFileInfo& info) {
   else if (info.format.rfind("STL", 0) == 0)
     c = {24, 130, 0};
   const double others = double(info.normals + info.texcoords + info.otherElements);
-  const double bytes = double(info.fileBytes) + c.vertex * double(info.vertices) +
+  const double bytes = 2.0 * double(info.fileBytes) + c.vertex * double(info.vertices) +
                        c.face * double(info.triangles) + c.other * others;
   return bytes >= 0x1p63 ? uint64_t(1) << 63 : uint64_t(bytes);
 }

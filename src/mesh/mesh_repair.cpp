@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/mesh/triangle_mesh.h"
 #include "quadtri/mesh/winding.h"
@@ -149,7 +150,7 @@ MeshRepairs repairMesh(TriangleMesh& mesh) {
     std::sort(key.begin(), key.end());
     sorted.emplace_back(key, uint32_t(t));
   }
-  std::sort(sorted.begin(), sorted.end());
+  parallelSort(sorted.begin(), sorted.end());  // (key, t) pairs are distinct: one order
   for (size_t i = 1; i < sorted.size(); ++i)
     if (sorted[i].first == sorted[i - 1].first) {
       keep[sorted[i].second] = 0;

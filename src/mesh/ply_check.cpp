@@ -9,7 +9,6 @@
 #include <array>
 #include <charconv>
 #include <cstring>
-#include <fstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -79,7 +78,7 @@ struct Element {
 // Reads the body of a binary PLY in blocks, tracking how many bytes are left in the file.
 class BinaryBody {
  public:
-  BinaryBody(std::ifstream& in, uint64_t bytes) : in_(in), left_(bytes) {}
+  BinaryBody(std::istream& in, uint64_t bytes) : in_(in), left_(bytes) {}
   uint64_t left() const { return left_ + (end_ - pos_); }
   /// Skips `n` bytes; false when fewer are left.
   bool skip(uint64_t n) {
@@ -116,7 +115,7 @@ class BinaryBody {
     end_ = kept + got;
     return got > 0;
   }
-  std::ifstream& in_;
+  std::istream& in_;
   uint64_t left_;
   std::array<uint8_t, 1 << 16> buffer_{};
   size_t pos_ = 0, end_ = 0;
@@ -131,7 +130,7 @@ int64_t decodeCount(const uint8_t* b, const PlyType& t, bool bigEndian) {
   return int64_t(u);
 }
 
-void checkBinaryBody(std::ifstream& in, uint64_t bodyBytes, const std::vector<Element>& elements,
+void checkBinaryBody(std::istream& in, uint64_t bodyBytes, const std::vector<Element>& elements,
                      bool bigEndian, const std::string& name) {
   BinaryBody body(in, bodyBytes);
   for (const Element& e : elements) {
@@ -182,7 +181,7 @@ bool asciiValue(std::string_view word, const PlyType& t) {
 // ASCII: one element per line (as Assimp reads them), each line holding a value per scalar
 // property and, per list, its count and that many values; blank lines are skipped, words past
 // the last property ignored and properties past the line's last word absent (as Assimp does).
-void checkAsciiBody(std::ifstream& in, long lineNo, const std::vector<Element>& elements,
+void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& elements,
                     const std::string& name) {
   std::string line;
   for (const Element& e : elements)
@@ -232,10 +231,10 @@ void checkAsciiBody(std::ifstream& in, long lineNo, const std::vector<Element>& 
 
 }  // namespace
 
-MeshFileInfo inspectPly(const std::filesystem::path& path, uint64_t fileBytes) {
+MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view bytes) {
   const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("{}: cannot open file", name);
+  const uint64_t fileBytes = bytes.size();
+  MemoryStream in(bytes);
   std::vector<Element> elements;
   std::string line, format;
   long lineNo = 1;

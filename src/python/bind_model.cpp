@@ -10,6 +10,7 @@
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/math/error.h"
 #include "quadtri/surface/convert_output.h"
+#include "quadtri/surface/patch_table.h"
 
 namespace quadtri::python {
 
@@ -59,6 +60,33 @@ py::array recordsOf(const nlohmann::json& list, const nlohmann::json& empty) {
 }  // namespace
 
 void bindModel(py::module_& m) {
+  m.def(
+      "read_patches",
+      [](py::handle path) {
+        const std::string file = pathOf(path);
+        PatchTable table;
+        {
+          LibraryCall call;
+          table = readPatchTable(file);
+        }
+        py::dict out;
+        out["model"] = table.model;
+        out["tessellation"] = table.tessellation;
+        out["triangles"] = table.triangles;
+        out["patches"] =
+            recordsFromBytes(table.patchLayout, table.patches.data(), size_t(table.patchCount));
+        out["bridges"] =
+            recordsFromBytes(table.bridgeLayout, table.bridges.data(), size_t(table.bridgeCount));
+        return out;
+      },
+      py::arg("path"), R"doc(
+Reads a binary patch table, what `quadtri convert MESH --model NAME -o OUT.qtp` writes (README,
+"Binary patch table"): a dict with "model", "tessellation" (as --tessellation takes it),
+"triangles" (input triangles), "patches" and "bridges", the structured arrays Model.patches()
+and Model.bridges() return for the same conversion. Raises quadtri.Error naming the file and
+the byte offset of what is wrong in it.
+)doc");
+
   py::class_<PyModel>(m, "Model", R"doc(
 A triangle mesh converted by one model (quadtri.model_names()), as `quadtri convert` and
 `quadtri analyze` convert it.
@@ -174,13 +202,9 @@ and p["orientation"]; nested JSON objects are nested fields (p["control_points"]
       .def(
           "bridges",
           [](const PyModel& p) {
-            const nlohmann::json empty = {
-                {"joins", {0, 0}},
-                {"plane", {0.0, 0.0, 0.0, 0.0}},
-                {"planes", nlohmann::json::array()},
-                {"bounds", {{"min", {0.0, 0.0, 0.0}}, {"max", {0.0, 0.0, 0.0}}}}};
             const nlohmann::json j = conversion(p);
-            return recordsOf(j.contains("bridges") ? j["bridges"] : nlohmann::json::array(), empty);
+            return recordsOf(j.contains("bridges") ? j["bridges"] : nlohmann::json::array(),
+                             emptyBridgeRecord());
           },
           R"doc(
 The edge bridges of quadric-implicit-robust as a structured array (empty for other models and where

@@ -1,10 +1,16 @@
 #include "quadtri/surface/convert_output.h"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "quadtri/io/atomic_file.h"
+#include "quadtri/io/atomic_stream.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/patch_table.h"
 #include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
@@ -12,6 +18,86 @@ namespace quadtri {
 std::string tessellationName(const Tessellation& tessellation) {
   return tessellation.kind == Tessellation::Kind::ThesisGrid ? "thesis"
                                                              : std::to_string(tessellation.level);
+}
+
+namespace {
+
+nlohmann::json bridgeJsonOf(const QuadricPatch& b) {
+  nlohmann::json bridge;
+  bridge["joins"] = {b.joins[0], b.joins[1]};
+  bridge["plane"] = {b.q[6], b.q[7], b.q[8], b.q[9]};
+  bridge["join_planes"] = {b.joinPlanes[0], b.joinPlanes[1]};
+  bridge["planes"] = nlohmann::json::array();
+  for (int k = 0; k < b.planeCount; ++k)
+    bridge["planes"].push_back({b.planes[k][0], b.planes[k][1], b.planes[k][2], b.planes[k][3]});
+  bridge["bounds"] = {{"min", {b.bounds.lo.x(), b.bounds.lo.y(), b.bounds.lo.z()}},
+                      {"max", {b.bounds.hi.x(), b.bounds.hi.y(), b.bounds.hi.z()}}};
+  return bridge;
+}
+
+bool writesBridges(const SurfaceModel& model) {
+  return model.name() == std::string_view("quadric-implicit-robust");
+}
+
+// Writes "[item(0),item(1),...]": the items dumped in parallel, kChunk at a time, and written
+// in order, so that at most one chunk of text is held.
+template <typename Item>
+void writeArray(std::ostream& out, size_t count, const Item& item) {
+  constexpr size_t kChunk = 4096;
+  std::vector<std::string> text;
+  out << '[';
+  for (size_t first = 0; first < count; first += kChunk) {
+    const size_t n = std::min(kChunk, count - first);
+    text.assign(n, std::string());
+    parallelFor(size_t(0), n, [&](size_t i) { text[i] = item(first + i).dump(); });
+    for (size_t i = 0; i < n; ++i) {
+      if (first + i > 0) out << ',';
+      out << text[i];
+    }
+  }
+  out << ']';
+}
+
+// The layout of `count` records item(i), or of `empty` when there are none: the records are
+// made kChunk at a time in parallel and added in order, never all held.
+template <typename Item>
+RecordLayout layoutOf(size_t count, const Item& item, const nlohmann::json& empty) {
+  constexpr size_t kChunk = 4096;
+  RecordLayout layout;
+  if (count == 0) layout.add(empty);
+  std::vector<nlohmann::json> records;
+  for (size_t first = 0; first < count; first += kChunk) {
+    records.assign(std::min(kChunk, count - first), nlohmann::json());
+    parallelFor(size_t(0), records.size(), [&](size_t i) { records[i] = item(first + i); });
+    for (const nlohmann::json& r : records) layout.add(r);
+  }
+  layout.finish();
+  return layout;
+}
+
+// Writes the `count` records item(i) in `layout`, kChunk at a time.
+template <typename Item>
+void writeRecords(std::ostream& out, size_t count, const Item& item, const RecordLayout& layout) {
+  constexpr size_t kChunk = 4096;
+  const size_t size = layout.itemSize();
+  std::vector<char> bytes;
+  for (size_t first = 0; first < count; first += kChunk) {
+    const size_t n = std::min(kChunk, count - first);
+    bytes.resize(n * size);
+    parallelFor(size_t(0), n, [&](size_t i) { layout.fill(item(first + i), &bytes[i * size]); });
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+  }
+}
+
+}  // namespace
+
+size_t bridgeCount(const SurfaceModel& model) {
+  if (model.representation() != Representation::Implicit) return 0;
+  return model.renderPatches().size() - model.patchCount();
+}
+
+nlohmann::json bridgeJson(const SurfaceModel& model, size_t i) {
+  return bridgeJsonOf(model.renderPatches().at(model.patchCount() + i));
 }
 
 nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tessellation) {
@@ -23,37 +109,66 @@ nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tes
   for (size_t t = 0; t < model.patchCount(); ++t) j["patches"].push_back(model.patchJson(t));
   // Edge bridges (quadric-implicit-robust): the primitives after the patches. The robust model
   // always writes the array, empty when it has no bridges.
-  if (model.name() == std::string_view("quadric-implicit-robust"))
-    j["bridges"] = nlohmann::json::array();
-  if (model.representation() == Representation::Implicit) {
-    const std::vector<QuadricPatch>& all = model.renderPatches();
-    for (size_t i = model.patchCount(); i < all.size(); ++i) {
-      const QuadricPatch& b = all[i];
-      nlohmann::json bridge;
-      bridge["joins"] = {b.joins[0], b.joins[1]};
-      bridge["plane"] = {b.q[6], b.q[7], b.q[8], b.q[9]};
-      bridge["join_planes"] = {b.joinPlanes[0], b.joinPlanes[1]};
-      bridge["planes"] = nlohmann::json::array();
-      for (int k = 0; k < b.planeCount; ++k)
-        bridge["planes"].push_back(
-            {b.planes[k][0], b.planes[k][1], b.planes[k][2], b.planes[k][3]});
-      bridge["bounds"] = {{"min", {b.bounds.lo.x(), b.bounds.lo.y(), b.bounds.lo.z()}},
-                          {"max", {b.bounds.hi.x(), b.bounds.hi.y(), b.bounds.hi.z()}}};
-      j["bridges"].push_back(bridge);
-    }
-  }
+  if (writesBridges(model)) j["bridges"] = nlohmann::json::array();
+  const size_t bridges = bridgeCount(model);
+  for (size_t i = 0; i < bridges; ++i) j["bridges"].push_back(bridgeJson(model, i));
   return j;
+}
+
+void writeConversionJson(const SurfaceModel& model, const Tessellation& tessellation,
+                         std::ostream& out) {
+  // The keys in nlohmann::json's order (sorted), so the text is conversionJson(...).dump().
+  out << '{';
+  const size_t bridges = bridgeCount(model);
+  if (writesBridges(model) || bridges > 0) {
+    out << "\"bridges\":";
+    writeArray(out, bridges, [&](size_t i) { return bridgeJson(model, i); });
+    out << ',';
+  }
+  out << "\"model\":" << nlohmann::json(std::string(model.name())).dump() << ",\"patches\":";
+  writeArray(out, model.patchCount(), [&](size_t t) { return model.patchJson(t); });
+  out << ",\"tessellation\":" << nlohmann::json(tessellationName(tessellation)).dump()
+      << ",\"triangles\":" << nlohmann::json(model.mesh().triangleCount()).dump() << "}\n";
+}
+
+void writePatchTable(const SurfaceModel& model, const Tessellation& tessellation,
+                     std::ostream& out) {
+  const auto patch = [&](size_t t) { return model.patchJson(t); };
+  const auto bridge = [&](size_t i) { return bridgeJson(model, i); };
+  PatchTableInfo info;
+  info.model = std::string(model.name());
+  info.tessellation = tessellationName(tessellation);
+  info.triangles = model.mesh().triangleCount();
+  info.patchCount = model.patchCount();
+  info.bridgeCount = bridgeCount(model);
+  const RecordLayout patches = layoutOf(info.patchCount, patch, nlohmann::json::object());
+  const RecordLayout bridges = layoutOf(info.bridgeCount, bridge, emptyBridgeRecord());
+  out << patchTableHeader(info, patches, bridges);
+  writeRecords(out, info.patchCount, patch, patches);
+  writeRecords(out, info.bridgeCount, bridge, bridges);
 }
 
 size_t writeConversion(const SurfaceModel& model, const Tessellation& tessellation,
                        const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   if (ext == ".json") {
-    writeTextFile(path, conversionJson(model, tessellation).dump() + "\n");
+    writeStreamAtomically(
+        path, [&](std::ostream& out) { writeConversionJson(model, tessellation, out); });
+    return 0;
+  }
+  if (ext == ".qtp") {
+    writeStreamAtomically(path,
+                          [&](std::ostream& out) { writePatchTable(model, tessellation, out); });
     return 0;
   }
   if (ext != ".obj" && ext != ".ply")
-    fail("{}: unknown output extension '{}': expected .obj, .ply or .json", path.string(), ext);
+    fail("{}: unknown output extension '{}': expected .obj, .ply, .json or .qtp", path.string(),
+         ext);
+  // The input triangles are written as they are, not copied first.
+  if (model.representation() == Representation::InputTriangles) {
+    saveMesh(model.mesh(), path);
+    return model.mesh().triangleCount();
+  }
   const TriangleMesh surface = tessellate(model, tessellation);
   saveMesh(surface, path);
   return surface.triangleCount();

@@ -181,3 +181,40 @@ def test_bridges_on_a_torus():
     # its own.
     assert b["join_planes"].shape == (len(b), 2)
     np.testing.assert_allclose(np.linalg.norm(b["plane"][:, :3], axis=1), 1.0, atol=1e-9)
+
+
+def same_records(a, b):
+    """Equal structured arrays: one dtype, the same bytes (NaN where one is NaN)."""
+    assert a.dtype == b.dtype
+    assert a.shape == b.shape
+    assert a.tobytes() == b.tobytes()
+
+
+@pytest.mark.parametrize("model", quadtri.model_names())
+def test_read_patches_matches_patches(cli, tmp_path, model):
+    out = tmp_path / "p.qtp"
+    cli("convert", "torus:1,0.35,12,6", "--model", model, "-o", out)
+    table = quadtri.read_patches(out)
+    m = quadtri.Model(model, *quadtri.load_mesh("torus:1,0.35,12,6"))
+    assert table["model"] == model
+    assert table["tessellation"] == "8"
+    assert table["triangles"] == m.patch_count
+    same_records(table["patches"], m.patches())
+    same_records(table["bridges"], m.bridges())
+    # And the JSON the CLI writes beside it holds the same values.
+    json_out = tmp_path / "p.json"
+    cli("convert", "torus:1,0.35,12,6", "--model", model, "-o", json_out)
+    check_records(table["patches"], json.loads(json_out.read_text())["patches"])
+
+
+def test_read_patches_rejects_a_bad_file_naming_it_and_the_offset(cli, tmp_path):
+    out = tmp_path / "p.qtp"
+    cli("convert", "icosahedron", "--model", "quadric-implicit", "-o", out)
+    data = out.read_bytes()
+    bad = tmp_path / "bad.qtp"
+    bad.write_bytes(b"NOTAQTP\0" + data[8:])
+    with pytest.raises(quadtri.Error, match=r"bad\.qtp: offset 0: not a quadtri patch table"):
+        quadtri.read_patches(bad)
+    bad.write_bytes(data[:-5])
+    with pytest.raises(quadtri.Error, match=r"bad\.qtp: offset \d+: the header declares 20 patches"):
+        quadtri.read_patches(bad)

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
+#include <ostream>
 #include <string>
 
 #include "quadtri/surface/model.h"
@@ -17,10 +18,22 @@ std::string tessellationName(const Tessellation& tessellation);
 ///  "patches": [model.patchJson(t) for every triangle t]}.
 nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tessellation);
 
+/// The edge bridges of quadric-implicit-robust (an implicit model's render patches after its
+/// patches; 0 for other models), and bridge i's JSON as conversionJson lists it.
+size_t bridgeCount(const SurfaceModel& model);
+nlohmann::json bridgeJson(const SurfaceModel& model, size_t i);
+
+/// Writes conversionJson(model, tessellation).dump() and a newline to `out`, the same bytes, as
+/// a stream: the patches are dumped in parallel a few thousand at a time and written in order,
+/// so the whole document is never held in memory.
+void writeConversionJson(const SurfaceModel& model, const Tessellation& tessellation,
+                         std::ostream& out);
+
 /// Writes the conversion by the file's extension: .obj or .ply get the tessellated surface
-/// (the input triangles for InputTriangles models), .json gets conversionJson. The file
-/// appears atomically; any other extension throws Error before anything is written. Returns
-/// the number of triangles written (0 for JSON).
+/// (the input triangles for InputTriangles models), .json gets conversionJson (written as a
+/// stream, writeConversionJson), .qtp the binary patch table (writePatchTable, patch_table.h).
+/// The file appears atomically; any other extension throws Error before anything is written.
+/// Returns the number of triangles written (0 for JSON and .qtp).
 size_t writeConversion(const SurfaceModel& model, const Tessellation& tessellation,
                        const std::filesystem::path& path);
 

@@ -1,0 +1,194 @@
+// The loader reads a file once and welds without a map; the native reader of plain OBJ files
+// gives the mesh Assimp gives, bit for bit; saveMesh streams the same bytes as before.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "quadtri/math/error.h"
+#include "quadtri/mesh/mesh_io.h"
+#include "quadtri/mesh/mesh_reader.h"
+#include "quadtri/mesh/shapes.h"
+
+namespace quadtri {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MeshLoad : public ::testing::Test {
+ protected:
+  fs::path dir = fs::temp_directory_path() / ("quadtri-mesh-load-" + std::to_string(::getpid()));
+  void SetUp() override { fs::create_directories(dir); }
+  void TearDown() override { fs::remove_all(dir); }
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path path = dir / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+};
+
+std::string bits(const Vec3& v) {
+  std::string s(sizeof(double) * 3, '\0');
+  std::memcpy(s.data(), v.data(), s.size());
+  return s;
+}
+
+// Every field, bit for bit.
+void expectIdentical(const TriangleMesh& a, const TriangleMesh& b, const std::string& what) {
+  ASSERT_EQ(a.positions.size(), b.positions.size()) << what;
+  for (size_t i = 0; i < a.positions.size(); ++i)
+    ASSERT_EQ(bits(a.positions[i]), bits(b.positions[i])) << what << ": position " << i;
+  ASSERT_EQ(a.triangles, b.triangles) << what;
+  ASSERT_EQ(a.normals.size(), b.normals.size()) << what;
+  for (size_t i = 0; i < a.normals.size(); ++i)
+    ASSERT_EQ(bits(a.normals[i]), bits(b.normals[i])) << what << ": normal " << i;
+  ASSERT_EQ(a.normalIndices, b.normalIndices) << what;
+  EXPECT_EQ(a.repairs.summary(), b.repairs.summary()) << what;
+}
+
+TEST_F(MeshLoad, NativeObjReaderGivesAssimpsMeshBitForBit) {
+  std::map<std::string, std::string> files;
+  // Written by quadtri: 17 significant digits, split normals (a cylinder's caps and side).
+  for (const char* spec : {"torus:1,0.35,24,12", "cylinder:16,3", "genus2:8"}) {
+    const fs::path path = dir / (std::string(spec).substr(0, 5) + ".obj");
+    saveMesh(parseBuiltinSpec(spec)->mesh, path);
+    std::ifstream in(path, std::ios::binary);
+    files[path.filename().string()] = std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  // Numbers in every form both parsers take, negative indices, texture coordinates, smoothing
+  // groups, CRLF line ends, a duplicate vertex and -0, a zero normal (replaced by the face's).
+  files["forms.obj"] =
+      "# forms\r\nv 0 0 0\r\nv 1.5e-1 +0.25 -0\r\nv 0.5 5. 1E+2\r\nv -0.000001 1e-7 3\r\n"
+      "v 0 0 0\r\nv 123456.789012345678 -98765.4321 0.1\r\ns 1\r\nvt 0 0\r\nvt 1 1\r\n"
+      "vn 0 0 1\r\nvn 0 0 0\r\nvn 0.3 0.4 0.5\r\n"
+      "f 1/1/1 2/2/1 3/1/3\r\nf -3/-1/-1 -2/-2/-2 -1/-1/-3\r\n\r\ns off\r\nf 5//1 2//3 4//3\r\n";
+  files["plain.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 0\nf 1 2 3\nf 2 4 3\nf 5 3 4";
+  // Read by Assimp alone (the native reader declines): a group, a quad, a trailing comment.
+  files["group.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ng top\nf 1 2 3\nf 2 4 3\n";
+  files["quad.obj"] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+  files["comment.obj"] = "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  // Assimp drops a v line with a number starting with '.': the native reader declines it.
+  files["dot.obj"] = "v 0 0 0\nv 1 0 0\nv .5 1 0\nv 0 1 0\nf 1 2 3\n";
+  for (const auto& [name, text] : files) {
+    const fs::path path = write(name, text);
+    for (const NormalOptions& normals :
+         {NormalOptions{}, NormalOptions{NormalSource::Angle, 30.0}}) {
+      const TriangleMesh native = loadMeshWith(MeshReader::Auto, path, normals);
+      const TriangleMesh assimp = loadMeshWith(MeshReader::Assimp, path, normals);
+      expectIdentical(native, assimp, name);
+      expectIdentical(loadMesh(path, normals), native, name);
+    }
+  }
+}
+
+TEST_F(MeshLoad, PositionsAreWeldedInOrderOfFirstUse) {
+  // Vertex 3 (0, 0, -0) equals vertex 1 (0, 0, 0): one position, with the sign of its first
+  // use. Positions are numbered as the faces first use them, not as the file lists them.
+  const fs::path path = write("order.obj",
+                              "v 5 5 5\nv 1 0 0\nv 0 0 -0\nv 0 1 0\nv 0 0 0\n"
+                              "f 2 3 4\nf 4 5 1\nf 1 5 2\n");
+  for (const MeshReader reader : {MeshReader::Auto, MeshReader::Assimp}) {
+    const TriangleMesh m = loadMeshWith(reader, path);
+    ASSERT_EQ(m.positions.size(), 4u);
+    EXPECT_EQ(m.positions[0], Vec3(1, 0, 0));
+    EXPECT_EQ(m.positions[1], Vec3(0, 0, 0));
+    EXPECT_TRUE(std::signbit(m.positions[1].z()));  // the first use was "0 0 -0"
+    EXPECT_EQ(m.positions[2], Vec3(0, 1, 0));
+    EXPECT_EQ(m.positions[3], Vec3(5, 5, 5));
+    EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}, {2, 1, 3}, {3, 1, 0}}));
+  }
+}
+
+// saveMesh as it was before it streamed: the whole file in an ostringstream, split normals
+// through a std::map.
+std::string referenceObj(const TriangleMesh& mesh) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "# written by quadtri\n";
+  for (const Vec3& p : mesh.positions) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  for (const Vec3& n : mesh.normals) out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    out << 'f';
+    for (int k = 0; k < 3; ++k) {
+      out << ' ' << mesh.triangles[t][k] + 1;
+      if (mesh.hasNormals()) out << "//" << mesh.normalIndices[t][k] + 1;
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string referencePly(const TriangleMesh& mesh) {
+  std::vector<Vec3> pos, nrm;
+  std::vector<Tri> tris;
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> ids;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    Tri out{};
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t pi = mesh.triangles[t][k];
+      const uint32_t ni = mesh.hasNormals() ? mesh.normalIndices[t][k] : 0;
+      auto [it, inserted] = ids.try_emplace({pi, ni}, uint32_t(pos.size()));
+      if (inserted) {
+        pos.push_back(mesh.positions[pi]);
+        if (mesh.hasNormals()) nrm.push_back(mesh.normals[ni]);
+      }
+      out[k] = it->second;
+    }
+    tris.push_back(out);
+  }
+  std::ostringstream out(std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\ncomment written by quadtri\n"
+      << "element vertex " << pos.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (!nrm.empty()) out << "property float nx\nproperty float ny\nproperty float nz\n";
+  out << "element face " << tris.size()
+      << "\nproperty list uchar uint vertex_indices\nend_header\n";
+  auto put = [&](const auto& value) {
+    out.write(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
+  for (size_t i = 0; i < pos.size(); ++i) {
+    for (int c = 0; c < 3; ++c) put(float(pos[i][c]));
+    if (!nrm.empty())
+      for (int c = 0; c < 3; ++c) put(float(nrm[i][c]));
+  }
+  for (const Tri& t : tris) {
+    put(uint8_t(3));
+    for (uint32_t i : t) put(i);
+  }
+  return out.str();
+}
+
+std::string readAll(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST_F(MeshLoad, SavedFilesAreTheBytesTheyWereBeforeStreaming) {
+  for (const char* spec : {"cylinder:16,3", "torus:1,0.35,40,20", "genus2:8", "cube:2"}) {
+    TriangleMesh mesh = parseBuiltinSpec(spec)->mesh;
+    TriangleMesh bare = mesh;
+    bare.normals.clear();
+    bare.normalIndices.clear();
+    for (const TriangleMesh* m : {&mesh, &bare}) {
+      saveMesh(*m, dir / "out.obj");
+      saveMesh(*m, dir / "out.ply");
+      EXPECT_EQ(readAll(dir / "out.obj"), referenceObj(*m)) << spec;
+      EXPECT_EQ(readAll(dir / "out.ply"), referencePly(*m)) << spec;
+    }
+  }
+}
+
+TEST_F(MeshLoad, AFailedSaveLeavesNothingBehind) {
+  TriangleMesh mesh = parseBuiltinSpec("icosahedron")->mesh;
+  mesh.positions[3].x() = std::nan("");
+  EXPECT_THROW(saveMesh(mesh, dir / "bad.ply"), Error);
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace quadtri
