@@ -313,17 +313,25 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
   // thrown, and the reader's result is only used once the check has passed.
   constexpr uint64_t kPlainObjBytesPerByte = 8;
   MeshFileInfo info;
+  FileDigest digest;
   std::optional<mesh_check::ObjCorners> plain;
   bool plainTried = false;
   const bool plainObj = reader == MeshReader::Auto && ext == ".obj";
   const uint64_t plainBytes = kPlainObjBytesPerByte * uint64_t(bytes.size());
   if (plainObj &&
       (!budget || budget->maxBytes == 0 || budget->usedBytes + plainBytes <= budget->maxBytes)) {
-    parallelInvoke([&] { info = mesh_check::inspectMeshBytes(path, bytes); },
-                   [&] { plain = mesh_check::readPlainObj(bytes); });
+    // The digest (for render keys, TriangleMesh::fileDigest) is taken beside the check, while
+    // the reader runs.
+    parallelInvoke(
+        [&] {
+          info = mesh_check::inspectMeshBytes(path, bytes);
+          digest = FileDigest::of(bytes);
+        },
+        [&] { plain = mesh_check::readPlainObj(bytes); });
     plainTried = true;
   } else {
     info = mesh_check::inspectMeshBytes(path, bytes);
+    digest = FileDigest::of(bytes);
   }
   // The OBJ pre-pass counts faces exactly; without this, Assimp's refusal ("all meshes are
   // orphaned") would not say what is wrong.
@@ -352,6 +360,7 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     fail("{}: every triangle names a vertex twice; no surface is left", name);
   applyNormals(mesh, normals);
   mesh.validate(name);
+  mesh.fileDigest = digest;
   return mesh;
 }
 

@@ -6,6 +6,7 @@
 
 #include "quadtri/math/error.h"
 #include "quadtri/scene/render_key.h"
+#include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
 
 namespace quadtri {
@@ -95,6 +96,44 @@ TEST(RenderKey, ChangesWithWhatTheImageDependsOnOnly) {
         << e.what();
   }
   EXPECT_THROW(checkResumable(state, key, 8, 9, "s.state"), Error);
+  fs::remove_all(dir);
+}
+
+TEST(RenderKey, TheLoadersDigestsStandInForReadingTheMeshFilesAgain) {
+  const fs::path dir = fs::temp_directory_path() / "quadtri_test_render_key_digests";
+  fs::create_directories(dir);
+  std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "scene.xml") << R"(<scene version="3.0.0">
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>
+  <shape type="obj"><string name="filename" value="tri.obj"/></shape>
+</scene>
+)";
+  const SceneDescription d = loadSceneDescription(dir / "scene.xml");
+  const BuiltScene built = buildScene(d);
+  // The loader recorded the file it read: its bytes' FNV-1a and count.
+  ASSERT_EQ(built.fileDigests.size(), 1u);
+  const auto& [path, digest] = *built.fileDigests.begin();
+  EXPECT_EQ(path, dir / "tri.obj");
+  EXPECT_EQ(digest.bytes, 32u);
+  EXPECT_EQ(digest.hash, FileDigest::of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").hash);
+  RenderOptions options;
+  options.samplesPerPixel = 4;
+  // The same keys whether the file is read again or its digest is taken.
+  const RenderKeys read = renderKeys(d, options, std::nullopt);
+  const RenderKeys given = renderKeys(d, options, std::nullopt, &built.fileDigests);
+  EXPECT_EQ(read.render, given.render);
+  EXPECT_EQ(read.film, given.film);
+  // With the digest given, the mesh file is not read at all.
+  fs::remove(dir / "tri.obj");
+  EXPECT_THROW(renderKeys(d, options, std::nullopt), Error);
+  EXPECT_EQ(renderKeys(d, options, std::nullopt, &built.fileDigests).render, read.render);
+  // Another digest is another render.
+  FileDigests other = built.fileDigests;
+  other.begin()->second.hash ^= 1;
+  EXPECT_NE(renderKeys(d, options, std::nullopt, &other).render, read.render);
   fs::remove_all(dir);
 }
 
