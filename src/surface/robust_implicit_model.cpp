@@ -169,11 +169,20 @@ constexpr double kAlignBelowDeg = 1e-6;
 // Rounds of shrinking overlapping cells (each halves their reach).
 constexpr int kOverlapRounds = 8;
 
+// Oriented face normals closer than this cosine (60°) say that two triangles lie on the same
+// side of the solid: no thin part separates them (between two sheets of a solid that face the
+// same way lies one that faces the other way, whose cell the test still meets).
+constexpr double kSameSideCos = 0.5;
+
 // Per triangle: its cell overlaps the cell of a triangle it shares no vertex with, unless the
-// two triangles themselves (their flat cores) do. Candidate
-// pairs from a uniform grid of the cells' boxes (spacing: the mean edge length).
+// two triangles themselves (their flat cores) do, or face the same way (kSameSideCos). Of an
+// overlapping pair only the triangle whose patch reaches farther (relative to its size) is
+// flagged, unless `both`. Candidate pairs from a uniform grid of the cells' boxes (spacing: the
+// mean edge length).
 std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<ConvexCell>& cells,
-                                   const std::vector<ConvexCell>& flatCores) {
+                                   const std::vector<ConvexCell>& flatCores,
+                                   const std::vector<Vec3>& faceNormals,
+                                   const std::vector<double>& reach, bool both) {
   const size_t n = cells.size();
   std::vector<char> out(n, 0);
   const double spacing = mesh.meanEdgeLength();
@@ -244,13 +253,19 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
   std::vector<char> hit(pairs.size(), 0);
   parallelFor(size_t(0), pairs.size(), [&](size_t i) {
     const auto [a, b] = pairs[i];
+    if (faceNormals[a].dot(faceNormals[b]) > kSameSideCos) return;
     const double tolerance = 1e-9 * std::min(mesh.meanEdgeLength(a), mesh.meanEdgeLength(b));
     // Triangles that cross each other (or nearly) keep crossing whatever their patches do.
     hit[i] = cellsOverlap(cells[a], cells[b], tolerance) &&
              !cellsOverlap(flatCores[a], flatCores[b], tolerance);
   });
-  for (size_t i = 0; i < pairs.size(); ++i)
-    if (hit[i]) out[pairs[i].first] = out[pairs[i].second] = 1;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    if (!hit[i]) continue;
+    const auto [a, b] = pairs[i];
+    const double ra = reach[a] / mesh.meanEdgeLength(a), rb = reach[b] / mesh.meanEdgeLength(b);
+    if (both || !(ra < rb)) out[a] = 1;
+    if (both || ra < rb) out[b] = 1;
+  }
   return out;
 }
 
@@ -368,7 +383,16 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + frame.coreHi));
       cores[t] = makeConvexCell(planes, cells[t].tolerance);
     });
-    const std::vector<char> overlapping = overlappingCells(m, cores, flatCores);
+    // The first half of the rounds shrinks only the farther-reaching patch of each pair (often
+    // enough to part them), the rest both, as before.
+    std::vector<Vec3> faceNormals(m.triangleCount());
+    std::vector<double> reaches(m.triangleCount());
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+      faceNormals[t] = frames_[t].faceNormal;
+      reaches[t] = frames_[t].reach;
+    }
+    const std::vector<char> overlapping =
+        overlappingCells(m, cores, flatCores, faceNormals, reaches, round >= kOverlapRounds / 2);
     bool any = false;
     for (size_t t = 0; t < m.triangleCount(); ++t) {
       redo[t] = overlapping[t];
