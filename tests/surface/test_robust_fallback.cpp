@@ -3,6 +3,8 @@
 // test failed before the change its comment names.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "quadtri/surface/robust_implicit_model.h"
 
 namespace quadtri {
@@ -19,6 +21,41 @@ std::shared_ptr<const TriangleMesh> meshOf(std::vector<Vec3> positions, std::vec
   for (Vec3& n : mesh.normals) n.normalize();
   mesh.normalIndices = std::move(normalIndices);
   return std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
+TEST(RobustFallback, SliversAtAConeApexKeepTheirNormals) {
+  // The apex of CGAL's mask_cone.off: a fan of 30 slivers (12° at the apex) whose apex normal
+  // is the axis and whose rim normals are the cone's, 45° from it. The fits rise about 0.69 of
+  // their least altitude over their triangles, and the rise limit of half the altitude sent
+  // all 30 to blended normals. The limit is now also twice the largest sagitta of the edges'
+  // arcs, which the normals set.
+  constexpr int kSegments = 30;
+  std::vector<Vec3> positions{Vec3(0, 0, 1)};
+  std::vector<Vec3> normals{Vec3(0, 0, 1)};
+  std::vector<Tri> triangles;
+  for (int i = 0; i < kSegments; ++i) {
+    const double phi = 2.0 * kPi * i / kSegments;
+    positions.emplace_back(std::cos(phi), std::sin(phi), 0.0);
+    normals.emplace_back(std::cos(phi), std::sin(phi), 1.0);
+    triangles.push_back({0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % kSegments)});
+  }
+  const auto mesh = meshOf(positions, triangles, normals, triangles);
+  const RobustImplicitModel model(mesh);
+  EXPECT_EQ(model.fallbackCount(), 0u);
+  EXPECT_EQ(model.flatCount(), 0u);
+  // Each patch rises more than half its least altitude, and less than a quarter of its long
+  // edge.
+  for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+    const Vec3 n = mesh->faceNormal(t);
+    const Vec3 apex = mesh->corner(t, 0);
+    const double longEdge = (mesh->corner(t, 1) - apex).norm();
+    double rise = 0.0;
+    for (int j = 0; j <= 8; ++j)
+      for (int i = 0; i + j <= 8; ++i)
+        rise = std::max(rise, std::abs(n.dot(model.evaluate(t, i / 8.0, j / 8.0).position - apex)));
+    EXPECT_GT(rise, 0.5 * mesh->faceCross(t).norm() / longEdge) << t;
+    EXPECT_LT(rise, 0.25 * longEdge) << t;
+  }
 }
 
 TEST(RobustFallback, CellsOfTrianglesFacingTheSameWayMayOverlap) {
