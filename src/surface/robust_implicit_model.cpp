@@ -141,12 +141,12 @@ void keepAwayFromFaces(const TriangleMesh& mesh, const Edge& edge, SharedEdge& s
 // every triangle must agree about it, whatever its own normals say. A part that cannot be
 // oriented (non-orientable, or edges with more sides) lets each triangle's own normals decide
 // (patchOrientation).
-std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo) {
+std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo,
+                              const WindingParts& w) {
   std::vector<char> manifold(mesh.triangleCount(), 1);
   for (const Edge& edge : topo.edges)
     if (edge.sides.size() > 2)
       for (auto [t, k] : edge.sides) manifold[t] = 0;
-  const WindingParts w = windingParts(mesh, topo);
   std::vector<double> side(mesh.triangleCount(), 1.0);
   for (size_t p = 0; p < w.parts.size(); ++p) {
     const std::vector<uint32_t>& part = w.parts[p];
@@ -175,13 +175,17 @@ constexpr int kOverlapRounds = 8;
 constexpr double kSameSideCos = 0.5;
 
 // Per triangle: its cell overlaps the cell of a triangle it shares no vertex with, unless the
-// two triangles themselves (their flat cores) do, or face the same way (kSameSideCos). Of an
-// overlapping pair only the triangle whose patch reaches farther (relative to its size) is
-// flagged, unless `both`. Candidate pairs from a uniform grid of the cells' boxes (spacing: the
-// mean edge length).
+// two triangles themselves (their flat cores) do, face the same way (kSameSideCos), or belong
+// to different parts (connected across edges, `part`): separate solids, such as the bones of
+// bones.off, that touch or pass through each other, where their patches may cross as their
+// triangles do; each part stays closed (and crack_rate counts hits of triangles that share no
+// vertex as separate crossings). Of an overlapping pair only the triangle whose patch reaches
+// farther (relative to its size) is flagged, unless `both`. Candidate pairs from a uniform grid of
+// the cells' boxes (spacing: the mean edge length).
 std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<ConvexCell>& cells,
                                    const std::vector<ConvexCell>& flatCores,
                                    const std::vector<Vec3>& faceNormals,
+                                   const std::vector<uint32_t>& part,
                                    const std::vector<double>& reach, bool both) {
   const size_t n = cells.size();
   std::vector<char> out(n, 0);
@@ -253,7 +257,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
   std::vector<char> hit(pairs.size(), 0);
   parallelFor(size_t(0), pairs.size(), [&](size_t i) {
     const auto [a, b] = pairs[i];
-    if (faceNormals[a].dot(faceNormals[b]) > kSameSideCos) return;
+    if (faceNormals[a].dot(faceNormals[b]) > kSameSideCos || part[a] != part[b]) return;
     const double tolerance = 1e-9 * std::min(mesh.meanEdgeLength(a), mesh.meanEdgeLength(b));
     // Triangles that cross each other (or nearly) keep crossing whatever their patches do.
     hit[i] = cellsOverlap(cells[a], cells[b], tolerance) &&
@@ -323,7 +327,11 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
                         edges[i].direction);
     keepAwayFromFaces(m, edge, edges[i]);
   });
-  const std::vector<double> sides = faceSides(m, topo);
+  const WindingParts windings = windingParts(m, topo);
+  const std::vector<double> sides = faceSides(m, topo, windings);
+  std::vector<uint32_t> part(m.triangleCount(), 0);
+  for (size_t p = 0; p < windings.parts.size(); ++p)
+    for (uint32_t t : windings.parts[p]) part[t] = uint32_t(p);
   std::vector<ConvexCell> cells(m.triangleCount());
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
@@ -391,8 +399,8 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       faceNormals[t] = frames_[t].faceNormal;
       reaches[t] = frames_[t].reach;
     }
-    const std::vector<char> overlapping =
-        overlappingCells(m, cores, flatCores, faceNormals, reaches, round >= kOverlapRounds / 2);
+    const std::vector<char> overlapping = overlappingCells(m, cores, flatCores, faceNormals, part,
+                                                           reaches, round >= kOverlapRounds / 2);
     bool any = false;
     for (size_t t = 0; t < m.triangleCount(); ++t) {
       redo[t] = overlapping[t];

@@ -5,6 +5,9 @@
 
 #include <cmath>
 
+#include "quadtri/analysis/crack_rate.h"
+#include "quadtri/geometry/model_geometry.h"
+#include "quadtri/mesh/shapes.h"
 #include "quadtri/surface/robust_implicit_model.h"
 
 namespace quadtri {
@@ -128,6 +131,33 @@ TEST(RobustFallback, CellsOfTrianglesFacingTheSameWayMayOverlap) {
   EXPECT_GT(mesh->faceNormal(4).dot(mesh->faceNormal(15)), 0.99);
   const RobustImplicitModel model(mesh);
   EXPECT_EQ(model.fallbackCount(), 0u);
+}
+
+TEST(RobustFallback, SeparatePartsMayComeWithinReachOfEachOther) {
+  // Two unit icospheres (level 1, their exact normals) 0.01 apart: the patches facing each other
+  // reach 0.05 towards the other sphere, so their cores overlapped and, as across a thin part,
+  // were shrunk to blended normals (CGAL's bones.off: different bones within 0.02 to 0.1 edge
+  // lengths of each other, 3.4% of its patches). Separate parts are separate solids: their cores
+  // are no longer compared. Each sphere keeps its exact patches and the pair stays watertight.
+  ShapeParams params;
+  params.level = 1;
+  const TriangleMesh one = makeBuiltin("icosphere", params).mesh;
+  TriangleMesh two = one;
+  const size_t offset = two.positions.size(), normalOffset = two.normals.size();
+  for (const Vec3& p : one.positions) two.positions.push_back(p + Vec3(2.01, 0.0, 0.0));
+  for (const Vec3& n : one.normals) two.normals.push_back(n);
+  for (const Tri& t : one.triangles)
+    two.triangles.push_back(
+        {uint32_t(t[0] + offset), uint32_t(t[1] + offset), uint32_t(t[2] + offset)});
+  for (const Tri& t : one.normalIndices)
+    two.normalIndices.push_back({uint32_t(t[0] + normalOffset), uint32_t(t[1] + normalOffset),
+                                 uint32_t(t[2] + normalOffset)});
+  const auto mesh = std::make_shared<const TriangleMesh>(std::move(two));
+  const RobustImplicitModel model(mesh);
+  EXPECT_EQ(model.fallbackCount(), 0u);
+  CrackRateOptions options;
+  options.lines = 100000;
+  EXPECT_EQ(crackRate(modelGeometry(model, Tessellation{}), options), 0.0);
 }
 
 }  // namespace
