@@ -180,13 +180,15 @@ constexpr double kSameSideCos = 0.5;
 // bones.off, that touch or pass through each other, where their patches may cross as their
 // triangles do; each part stays closed (and crack_rate counts hits of triangles that share no
 // vertex as separate crossings). Of an overlapping pair only the triangle whose patch reaches
-// farther (relative to its size) is flagged, unless `both`. Candidate pairs from a uniform grid of
+// farther (relative to its size) is flagged, unless `both`. Only pairs with a core that
+// `changed` are tested. Candidate pairs from a uniform grid of
 // the cells' boxes (spacing: the mean edge length).
 std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<ConvexCell>& cells,
                                    const std::vector<ConvexCell>& flatCores,
                                    const std::vector<Vec3>& faceNormals,
                                    const std::vector<uint32_t>& part,
-                                   const std::vector<double>& reach, bool both) {
+                                   const std::vector<double>& reach,
+                                   const std::vector<char>& changed, bool both) {
   const size_t n = cells.size();
   std::vector<char> out(n, 0);
   const double spacing = mesh.meanEdgeLength();
@@ -243,7 +245,8 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
         bool shared = false;
         for (uint32_t va : mesh.triangles[a])
           for (uint32_t vb : mesh.triangles[b]) shared |= va == vb;
-        if (shared) continue;
+        // A pair neither of whose cores changed since the last round was found apart there.
+        if (shared || (!changed[a] && !changed[b])) continue;
         const Bounds3& ba = boxes[a];
         const Bounds3& bb = boxes[b];
         if ((ba.hi.array() < bb.lo.array()).any() || (bb.hi.array() < ba.lo.array()).any())
@@ -355,7 +358,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   for (size_t t = 0; t < m.triangleCount(); ++t) fitted[t] = patches_[t].q;
   std::vector<double> reach(m.triangleCount(), kInfinity);
   std::vector<char> redo(m.triangleCount(), 1);
-  std::vector<ConvexCell> flatCores;
+  std::vector<ConvexCell> flatCores, cores(m.triangleCount());
   // Cells of triangles that share no vertex must not overlap (thin parts, such as a plate
   // thinner than its triangles: a sheet of one side would otherwise reach through the other's):
   // each round halves the reach of the cells that do, and chooses their patches again.
@@ -378,9 +381,11 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       });
     }
     // The cores: each cell cut down to the heights of its patch and of the region between
-    // the patch and the triangle (what the patch and its bridges can reach).
-    std::vector<ConvexCell> cores(m.triangleCount());
+    // the patch and the triangle (what the patch and its bridges can reach); only those of the
+    // patches chosen again change.
     parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
+      if (!redo[t]) return;
+      cores[t] = ConvexCell();
       if (cells[t].empty()) return;
       const Frame& frame = frames_[t];
       const QuadricPatch& patch = patches_[t];
@@ -399,8 +404,8 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       faceNormals[t] = frames_[t].faceNormal;
       reaches[t] = frames_[t].reach;
     }
-    const std::vector<char> overlapping = overlappingCells(m, cores, flatCores, faceNormals, part,
-                                                           reaches, round >= kOverlapRounds / 2);
+    const std::vector<char> overlapping = overlappingCells(
+        m, cores, flatCores, faceNormals, part, reaches, redo, round >= kOverlapRounds / 2);
     bool any = false;
     for (size_t t = 0; t < m.triangleCount(); ++t) {
       redo[t] = overlapping[t];
