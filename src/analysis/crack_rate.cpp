@@ -71,16 +71,25 @@ struct LineHit {
   bool shared = true;
   /// Vertices of the triangles the primitive stands for (up to two), ~0u where unknown.
   std::array<uint32_t, 6> vertices{~0u, ~0u, ~0u, ~0u, ~0u, ~0u};
+  Vec3 point = Vec3::Zero();  ///< where the line meets the primitive
 };
 
-// Whether two hits may be one point of a boundary their primitives share: their triangles
-// share a vertex (always true where a hit does not know its triangles).
-bool mayShareBoundary(const LineHit& a, const LineHit& b) {
+// Whether two hits may be one point of a boundary their primitives share (always true where a
+// hit does not know its triangles): their triangles share an edge (or are one), or they share
+// one vertex and both hits lie within `near` of it (the only point two such primitives have
+// in common).
+bool mayShareBoundary(const LineHit& a, const LineHit& b, const std::vector<Vec3>& positions,
+                      double near) {
   if (a.vertices[0] == ~0u || b.vertices[0] == ~0u) return true;
+  uint32_t first = ~0u;
   for (uint32_t va : a.vertices)
-    for (uint32_t vb : b.vertices)
-      if (va != ~0u && va == vb) return true;
-  return false;
+    for (uint32_t vb : b.vertices) {
+      if (va == ~0u || va != vb || va == first) continue;
+      if (first != ~0u) return true;  // a second shared vertex
+      first = va;
+    }
+  if (first == ~0u) return false;
+  return (a.point - positions[first]).norm() < near && (b.point - positions[first]).norm() < near;
 }
 
 // A Bézier hit within this of its piece's boundary (in the piece's barycentric coordinates) may
@@ -100,7 +109,8 @@ constexpr double kBoundaryBarycentric = 1e-6;
 // vertices: primitives of triangles far apart on the mesh share no boundary, so their hits are
 // separate crossings however close (two components of a mesh that pass through each other
 // cross where a line meets both within the merge distance: `bones`).
-size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance) {
+size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance,
+                      const std::vector<Vec3>& positions) {
   std::sort(line.begin(), line.end(), [](const LineHit& a, const LineHit& b) { return a.s < b.s; });
   size_t crossings = 0;
   std::vector<size_t> group;
@@ -122,7 +132,8 @@ size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance) {
         for (size_t b = i; b < j; ++b) {
           if (!line[b].shared || group[b - i] != ~size_t(0)) continue;
           for (size_t c = i; c < j; ++c)
-            if (group[c - i] == groups && mayShareBoundary(line[b], line[c])) {
+            if (group[c - i] == groups &&
+                mayShareBoundary(line[b], line[c], positions, 10.0 * mergeDistance)) {
               group[b - i] = groups;
               ++grown;
               break;
@@ -160,6 +171,8 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
 
   // The vertices of the triangles a primitive stands for (ModelGeometry::mesh).
   const TriangleMesh* mesh = geometry.mesh;
+  const std::vector<Vec3> noPositions;
+  const std::vector<Vec3>& positions = mesh ? mesh->positions : noPositions;
   const auto vertices = [&](const RayHit& h) {
     std::array<uint32_t, 6> out{~0u, ~0u, ~0u, ~0u, ~0u, ~0u};
     if (!mesh) return out;
@@ -189,11 +202,12 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
         const RayHit& h = hits[i];
         const bool shared =
             !geometry.bezier || std::min({h.u, h.v, 1.0 - h.u - h.v}) < kBoundaryBarycentric;
-        line.push_back({sign * h.t, h.geometricNormal.dot(d) < 0.0, shared, vertices(h)});
+        line.push_back(
+            {sign * h.t, h.geometricNormal.dot(d) < 0.0, shared, vertices(h), p + sign * h.t * d});
       }
     }
-    const size_t crossings =
-        triangles ? triangles->count(p, d, hits, scratch) : patchCrossings(line, mergeDistance);
+    const size_t crossings = triangles ? triangles->count(p, d, hits, scratch)
+                                       : patchCrossings(line, mergeDistance, positions);
     return crossings % 2 == 1;
   };
   const size_t count = parallelReduce(
