@@ -1,6 +1,7 @@
 #include "quadtri/analysis/crack_rate.h"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -68,7 +69,28 @@ struct LineHit {
   double s;
   bool entering;
   bool shared = true;
+  /// Vertices of the triangles the primitive stands for (up to two), ~0u where unknown.
+  std::array<uint32_t, 6> vertices{~0u, ~0u, ~0u, ~0u, ~0u, ~0u};
+  Vec3 point = Vec3::Zero();  ///< where the line meets the primitive
 };
+
+// Whether two hits may be one point of a boundary their primitives share (always true where a
+// hit does not know its triangles): their triangles share an edge (or are one), or they share
+// one vertex and both hits lie within `near` of it (the only point two such primitives have
+// in common).
+bool mayShareBoundary(const LineHit& a, const LineHit& b, const std::vector<Vec3>& positions,
+                      double near) {
+  if (a.vertices[0] == ~0u || b.vertices[0] == ~0u) return true;
+  uint32_t first = ~0u;
+  for (uint32_t va : a.vertices)
+    for (uint32_t vb : b.vertices) {
+      if (va == ~0u || va != vb || va == first) continue;
+      if (first != ~0u) return true;  // a second shared vertex
+      first = va;
+    }
+  if (first == ~0u) return false;
+  return (a.point - positions[first]).norm() < near && (b.point - positions[first]).norm() < near;
+}
 
 // A Bézier hit within this of its piece's boundary (in the piece's barycentric coordinates) may
 // be the same point as its neighbour's hit; one farther inside is a crossing of its own.
@@ -83,22 +105,47 @@ constexpr double kBoundaryBarycentric = 1e-6;
 // Only hits that may lie on a shared boundary join a cluster's balance: an interior hit of a
 // Bézier piece is a crossing of its own however close another is (two sheets of a surface that
 // folds over itself near an edge, where the data bends it sharply, meet a line 1e-8 apart).
-size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance) {
+// And a cluster's balance is taken per group of hits whose triangles are joined through shared
+// vertices: primitives of triangles far apart on the mesh share no boundary, so their hits are
+// separate crossings however close (two components of a mesh that pass through each other
+// cross where a line meets both within the merge distance: `bones`).
+size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance,
+                      const std::vector<Vec3>& positions) {
   std::sort(line.begin(), line.end(), [](const LineHit& a, const LineHit& b) { return a.s < b.s; });
   size_t crossings = 0;
+  std::vector<size_t> group;
   for (size_t i = 0; i < line.size();) {
-    long balance = 0;
-    size_t shared = 0;
     size_t j = i;
-    for (; j < line.size() && (j == i || line[j].s - line[j - 1].s < mergeDistance); ++j) {
-      if (!line[j].shared) {
+    while (j < line.size() && (j == i || line[j].s - line[j - 1].s < mergeDistance)) ++j;
+    // Groups: connected components of mayShareBoundary among the cluster's shared hits.
+    group.assign(j - i, ~size_t(0));
+    size_t groups = 0;
+    for (size_t a = i; a < j; ++a) {
+      if (!line[a].shared) {
         ++crossings;
         continue;
       }
-      ++shared;
-      balance += line[j].entering ? 1 : -1;
+      if (group[a - i] != ~size_t(0)) continue;
+      group[a - i] = groups;
+      for (size_t grown = 1; grown > 0;) {
+        grown = 0;
+        for (size_t b = i; b < j; ++b) {
+          if (!line[b].shared || group[b - i] != ~size_t(0)) continue;
+          for (size_t c = i; c < j; ++c)
+            if (group[c - i] == groups &&
+                mayShareBoundary(line[b], line[c], positions, 10.0 * mergeDistance)) {
+              group[b - i] = groups;
+              ++grown;
+              break;
+            }
+        }
+      }
+      long balance = 0;
+      for (size_t b = i; b < j; ++b)
+        if (group[b - i] == groups) balance += line[b].entering ? 1 : -1;
+      crossings += balance != 0 ? 1 : 2;
+      ++groups;
     }
-    if (shared > 0) crossings += balance != 0 ? 1 : 2;
     i = j;
   }
   return crossings;
@@ -122,6 +169,28 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
       geometry.patches || geometry.bezier ? std::nullopt
                                           : std::optional<TriangleCrossings>(geometry.triangles);
 
+  // The vertices of the triangles a primitive stands for (ModelGeometry::mesh).
+  const TriangleMesh* mesh = geometry.mesh;
+  const std::vector<Vec3> noPositions;
+  const std::vector<Vec3>& positions = mesh ? mesh->positions : noPositions;
+  const auto vertices = [&](const RayHit& h) {
+    std::array<uint32_t, 6> out{~0u, ~0u, ~0u, ~0u, ~0u, ~0u};
+    if (!mesh) return out;
+    std::array<int64_t, 2> tris{-1, -1};
+    if (geometry.bezier) {
+      if (h.primitive < geometry.bezier->size()) tris[0] = (*geometry.bezier)[h.primitive].triangle;
+    } else if (geometry.patches && h.primitive < geometry.patches->size()) {
+      const QuadricPatch& p = (*geometry.patches)[h.primitive];
+      if (p.isBridge())
+        tris = {p.joins[0], p.joins[1]};
+      else
+        tris[0] = int64_t(h.primitive);
+    }
+    for (int k = 0; k < 2; ++k)
+      if (tris[k] >= 0 && size_t(tris[k]) < mesh->triangleCount())
+        for (int c = 0; c < 3; ++c) out[3 * k + c] = mesh->triangles[size_t(tris[k])][c];
+    return out;
+  };
   auto cracked = [&](const Vec3& p, const Vec3& d, std::vector<RayHit>& hits,
                      std::vector<LineHit>& line, std::vector<uint32_t>& scratch) {
     hits.clear();
@@ -133,11 +202,12 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
         const RayHit& h = hits[i];
         const bool shared =
             !geometry.bezier || std::min({h.u, h.v, 1.0 - h.u - h.v}) < kBoundaryBarycentric;
-        line.push_back({sign * h.t, h.geometricNormal.dot(d) < 0.0, shared});
+        line.push_back(
+            {sign * h.t, h.geometricNormal.dot(d) < 0.0, shared, vertices(h), p + sign * h.t * d});
       }
     }
-    const size_t crossings =
-        triangles ? triangles->count(p, d, hits, scratch) : patchCrossings(line, mergeDistance);
+    const size_t crossings = triangles ? triangles->count(p, d, hits, scratch)
+                                       : patchCrossings(line, mergeDistance, positions);
     return crossings % 2 == 1;
   };
   const size_t count = parallelReduce(

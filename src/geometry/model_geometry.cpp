@@ -35,6 +35,7 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
       break;
     case Representation::Implicit:
       g.patches = &model.renderPatches();
+      g.mesh = &model.mesh();
       g.patchBytes = model.patchMemoryBytes();
       if (model.quadricPatches().size() != model.patchCount() ||
           g.patches->size() < model.patchCount())
@@ -43,6 +44,7 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
       break;
     case Representation::Bezier:
       g.bezier = &model.bezierPieces();
+      g.mesh = &model.mesh();
       if (g.bezier->empty())
         fail("model '{}': a Bezier model without Bézier pieces ({} triangles)", model.name(),
              model.patchCount());

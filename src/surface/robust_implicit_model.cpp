@@ -141,12 +141,12 @@ void keepAwayFromFaces(const TriangleMesh& mesh, const Edge& edge, SharedEdge& s
 // every triangle must agree about it, whatever its own normals say. A part that cannot be
 // oriented (non-orientable, or edges with more sides) lets each triangle's own normals decide
 // (patchOrientation).
-std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo) {
+std::vector<double> faceSides(const TriangleMesh& mesh, const MeshTopology& topo,
+                              const WindingParts& w) {
   std::vector<char> manifold(mesh.triangleCount(), 1);
   for (const Edge& edge : topo.edges)
     if (edge.sides.size() > 2)
       for (auto [t, k] : edge.sides) manifold[t] = 0;
-  const WindingParts w = windingParts(mesh, topo);
   std::vector<double> side(mesh.triangleCount(), 1.0);
   for (size_t p = 0; p < w.parts.size(); ++p) {
     const std::vector<uint32_t>& part = w.parts[p];
@@ -169,11 +169,26 @@ constexpr double kAlignBelowDeg = 1e-6;
 // Rounds of shrinking overlapping cells (each halves their reach).
 constexpr int kOverlapRounds = 8;
 
+// Oriented face normals closer than this cosine (60°) say that two triangles lie on the same
+// side of the solid: no thin part separates them (between two sheets of a solid that face the
+// same way lies one that faces the other way, whose cell the test still meets).
+constexpr double kSameSideCos = 0.5;
+
 // Per triangle: its cell overlaps the cell of a triangle it shares no vertex with, unless the
-// two triangles themselves (their flat cores) do. Candidate
-// pairs from a uniform grid of the cells' boxes (spacing: the mean edge length).
+// two triangles themselves (their flat cores) do, face the same way (kSameSideCos), or belong
+// to different parts (connected across edges, `part`): separate solids, such as the bones of
+// bones.off, that touch or pass through each other, where their patches may cross as their
+// triangles do; each part stays closed (and crack_rate counts hits of triangles that share no
+// vertex as separate crossings). Of an overlapping pair only the triangle whose patch reaches
+// farther (relative to its size) is flagged, unless `both`. Only pairs with a core that
+// `changed` are tested. Candidate pairs from a uniform grid of
+// the cells' boxes (spacing: the mean edge length).
 std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<ConvexCell>& cells,
-                                   const std::vector<ConvexCell>& flatCores) {
+                                   const std::vector<ConvexCell>& flatCores,
+                                   const std::vector<Vec3>& faceNormals,
+                                   const std::vector<uint32_t>& part,
+                                   const std::vector<double>& reach,
+                                   const std::vector<char>& changed, bool both) {
   const size_t n = cells.size();
   std::vector<char> out(n, 0);
   const double spacing = mesh.meanEdgeLength();
@@ -230,7 +245,8 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
         bool shared = false;
         for (uint32_t va : mesh.triangles[a])
           for (uint32_t vb : mesh.triangles[b]) shared |= va == vb;
-        if (shared) continue;
+        // A pair neither of whose cores changed since the last round was found apart there.
+        if (shared || (!changed[a] && !changed[b])) continue;
         const Bounds3& ba = boxes[a];
         const Bounds3& bb = boxes[b];
         if ((ba.hi.array() < bb.lo.array()).any() || (bb.hi.array() < ba.lo.array()).any())
@@ -244,13 +260,19 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
   std::vector<char> hit(pairs.size(), 0);
   parallelFor(size_t(0), pairs.size(), [&](size_t i) {
     const auto [a, b] = pairs[i];
+    if (faceNormals[a].dot(faceNormals[b]) > kSameSideCos || part[a] != part[b]) return;
     const double tolerance = 1e-9 * std::min(mesh.meanEdgeLength(a), mesh.meanEdgeLength(b));
     // Triangles that cross each other (or nearly) keep crossing whatever their patches do.
     hit[i] = cellsOverlap(cells[a], cells[b], tolerance) &&
              !cellsOverlap(flatCores[a], flatCores[b], tolerance);
   });
-  for (size_t i = 0; i < pairs.size(); ++i)
-    if (hit[i]) out[pairs[i].first] = out[pairs[i].second] = 1;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    if (!hit[i]) continue;
+    const auto [a, b] = pairs[i];
+    const double ra = reach[a] / mesh.meanEdgeLength(a), rb = reach[b] / mesh.meanEdgeLength(b);
+    if (both || !(ra < rb)) out[a] = 1;
+    if (both || ra < rb) out[b] = 1;
+  }
   return out;
 }
 
@@ -308,7 +330,11 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
                         edges[i].direction);
     keepAwayFromFaces(m, edge, edges[i]);
   });
-  const std::vector<double> sides = faceSides(m, topo);
+  const WindingParts windings = windingParts(m, topo);
+  const std::vector<double> sides = faceSides(m, topo, windings);
+  std::vector<uint32_t> part(m.triangleCount(), 0);
+  for (size_t p = 0; p < windings.parts.size(); ++p)
+    for (uint32_t t : windings.parts[p]) part[t] = uint32_t(p);
   std::vector<ConvexCell> cells(m.triangleCount());
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
@@ -332,7 +358,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   for (size_t t = 0; t < m.triangleCount(); ++t) fitted[t] = patches_[t].q;
   std::vector<double> reach(m.triangleCount(), kInfinity);
   std::vector<char> redo(m.triangleCount(), 1);
-  std::vector<ConvexCell> flatCores;
+  std::vector<ConvexCell> flatCores, cores(m.triangleCount());
   // Cells of triangles that share no vertex must not overlap (thin parts, such as a plate
   // thinner than its triangles: a sheet of one side would otherwise reach through the other's):
   // each round halves the reach of the cells that do, and chooses their patches again.
@@ -355,9 +381,11 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       });
     }
     // The cores: each cell cut down to the heights of its patch and of the region between
-    // the patch and the triangle (what the patch and its bridges can reach).
-    std::vector<ConvexCell> cores(m.triangleCount());
+    // the patch and the triangle (what the patch and its bridges can reach); only those of the
+    // patches chosen again change.
     parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
+      if (!redo[t]) return;
+      cores[t] = ConvexCell();
       if (cells[t].empty()) return;
       const Frame& frame = frames_[t];
       const QuadricPatch& patch = patches_[t];
@@ -368,7 +396,16 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + frame.coreHi));
       cores[t] = makeConvexCell(planes, cells[t].tolerance);
     });
-    const std::vector<char> overlapping = overlappingCells(m, cores, flatCores);
+    // The first half of the rounds shrinks only the farther-reaching patch of each pair (often
+    // enough to part them), the rest both, as before.
+    std::vector<Vec3> faceNormals(m.triangleCount());
+    std::vector<double> reaches(m.triangleCount());
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+      faceNormals[t] = frames_[t].faceNormal;
+      reaches[t] = frames_[t].reach;
+    }
+    const std::vector<char> overlapping = overlappingCells(
+        m, cores, flatCores, faceNormals, part, reaches, redo, round >= kOverlapRounds / 2);
     bool any = false;
     for (size_t t = 0; t < m.triangleCount(); ++t) {
       redo[t] = overlapping[t];

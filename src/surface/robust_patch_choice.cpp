@@ -38,8 +38,9 @@ bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
 }
 
 // How far a patch may rise above or sink below its triangle, in units of the triangle's least
-// altitude (twice its area over its longest edge).
+// altitude (twice its area over its longest edge), or of the largest sagitta of its edges' arcs.
 constexpr double kMaxRise = 0.5;
+constexpr double kMaxArcRise = 2.0;
 
 }  // namespace
 
@@ -75,7 +76,20 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
   for (int k = 0; k < 3; ++k)
     longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
   const double altitude = m.faceCross(t).norm() / longest;
-  if (!(std::max(hmax, -hmin) <= kMaxRise * altitude)) return false;
+  // Or no farther than twice the rise of its edges' arcs: what the corner normals themselves
+  // say of the surface over a sliver, whose altitude is no measure of it (slivers along a
+  // curved direction, such as the teapot's at its poles, rise more than half their altitude).
+  // Normals averaged across a sharp edge are nearly perpendicular to the edge's chord, so that
+  // arc stays low and the check still holds their bulges back.
+  double sagitta = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& a = m.corner(t, k);
+    const Vec3& b = m.corner(t, (k + 1) % 3);
+    const Vec3 arc = edgeArcMidpoint(a, m.cornerNormal(t, k), b, m.cornerNormal(t, (k + 1) % 3));
+    sagitta = std::max(sagitta, (arc - 0.5 * (a + b)).norm());
+  }
+  const double allowed = std::max(kMaxRise * altitude, kMaxArcRise * sagitta);
+  if (!(std::max(hmax, -hmin) <= allowed)) return false;
 
   // The slab around the sampled heights, as tight as the exact checks below allow (a larger
   // cell only makes the gradient check harder): grown fourfold while the sheet leaves it.

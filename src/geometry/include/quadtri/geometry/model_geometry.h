@@ -18,6 +18,9 @@ struct ModelGeometry {
   TriangleMesh triangles;                               ///< empty for Implicit and Bezier models
   const std::vector<QuadricPatch>* patches = nullptr;   ///< renderPatches(), for Implicit models
   const std::vector<BezierTriangle>* bezier = nullptr;  ///< bezierPieces(), for Bezier models
+  /// For Implicit and Bezier models, the model's mesh: patch t and a Bézier piece stand for
+  /// their triangle, an edge bridge for the two patches it joins (QuadricPatch::joins).
+  const TriangleMesh* mesh = nullptr;
   bool shadingNormals = false;  ///< the triangles are rendered with their vertex normals
   bool liftRayOrigins = false;  ///< SurfaceModel::liftsRayOrigins() (shading-offset)
   /// SurfaceModel::patchMemoryBytes() for Implicit and Bezier models (for Bezier, the pieces'

@@ -45,9 +45,12 @@ namespace quadtri {
 ///
 /// The cores of two cells whose triangles share no vertex (each cell cut down to the heights
 /// of its patch and of the region between the patch and the triangle) must not overlap, unless
-/// the triangles themselves cross: where they do (thin parts, a plate thinner than its
-/// triangles) the patch of one side would reach through the other's. Such patches are chosen
-/// again, in rounds, each allowed half the reach of the last.
+/// the triangles themselves cross, face within 60° of each other, or lie in different parts
+/// (connected across edges): where cores overlap (thin parts, a plate thinner than its
+/// triangles) the patch of one side would reach through the other's. Such patches are chosen again,
+/// in rounds, each allowed half the reach of the last (first only the farther-reaching patch of
+/// each pair, then both). A patch may also rise no farther from its triangle than the larger of
+/// half its least altitude and twice its edges' largest arc sagitta.
 ///
 /// Where the fit fails those checks or does not cover its triangle (normals that no quadric
 /// through the corners follows: folds, averaged normals across sharp edges), the patch falls
