@@ -375,7 +375,7 @@ class Tracer {
     const int maxDepth =
         mode_ == Mode::All ? kMaxDepthAll : std::max(kMaxDepthRender - 2 * level, 4);
     const Box rootBox = netBox(stack[0].net);
-    if (culled(rootBox, found)) return;
+    if (culled(rootBox, found) || separated(stack[0].net)) return;
     stack[0].depth = 0;
     stack[0].newtonWentOutside = false;
     stack[0].zmin = rootBox.zlo;
@@ -425,7 +425,8 @@ class Tracer {
       b.zmin = boxB.zlo;
       a.extent = std::max(boxA.xhi - boxA.xlo, boxA.yhi - boxA.ylo);
       b.extent = std::max(boxB.xhi - boxB.xlo, boxB.yhi - boxB.ylo);
-      const bool keepA = !culled(boxA, found), keepB = !culled(boxB, found);
+      const bool keepA = !culled(boxA, found) && !separated(a.net);
+      const bool keepB = !culled(boxB, found) && !separated(b.net);
       int pushed = 0;
       if (keepA && keepB) {
         if (a.zmin < b.zmin) std::swap(a, b);
@@ -443,6 +444,37 @@ class Tracer {
  private:
   double limit(const Found& found) const {
     return mode_ == Mode::Nearest && found.any ? found.nearest.t : tmax_;
+  }
+
+  // Rendering queries: whether a line through the origin, across an edge of the net's corner
+  // triangle that the origin lies beyond, has every control point on the far side (then the
+  // net's convex hull excludes the origin). It culls the nodes along a region's edge that a ray
+  // just outside it crosses, which the frame's boxes keep. All-hits queries stay as they were.
+  bool separated(const Net& net) const {
+    if (mode_ == Mode::All) return false;
+    const P3* corner[3] = {&net[size_t(BezierTriangle::index(0, 0))],
+                           &net[size_t(BezierTriangle::index(4, 0))],
+                           &net[size_t(BezierTriangle::index(0, 4))]};
+    const double area = (corner[1]->x - corner[0]->x) * (corner[2]->y - corner[0]->y) -
+                        (corner[1]->y - corner[0]->y) * (corner[2]->x - corner[0]->x);
+    if (!(area != 0.0)) return false;
+    for (int e = 0; e < 3; ++e) {
+      const P3& p = *corner[e];
+      const P3& q = *corner[(e + 1) % 3];
+      // The outward normal of edge p → q.
+      const double nx = area > 0.0 ? q.y - p.y : p.y - q.y;
+      const double ny = area > 0.0 ? p.x - q.x : q.x - p.x;
+      if (!(nx * p.x + ny * p.y < 0.0)) continue;  // the origin is not beyond this edge
+      const double margin = marginXY_ * (std::abs(nx) + std::abs(ny));
+      bool all = true;
+      for (const P3& b : net)
+        if (!(nx * b.x + ny * b.y < -margin)) {
+          all = false;
+          break;
+        }
+      if (all) return true;
+    }
+    return false;
   }
 
   bool culled(const Box& b, const Found& found) const {
@@ -657,6 +689,17 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
 
 enum class Solved { Hit, Candidate, None, Unknown };
 
+// Whether (u, v) lies in the closed region `levels` 4-splits down `path` (no slack).
+bool inRegion(int path, int levels, double u, double v) {
+  double cu[3] = {0, 1, 0}, cv[3] = {0, 0, 1};
+  for (int l = 0; l < levels; ++l) childCorners((path >> (2 * l)) & 3, cu, cv);
+  const double e1u = cu[1] - cu[0], e1v = cv[1] - cv[0], e2u = cu[2] - cu[0], e2v = cv[2] - cv[0];
+  const double ru = u - cu[0], rv = v - cv[0];
+  const double det = e1u * e2v - e1v * e2u;
+  const double a = (ru * e2v - rv * e2u) / det, b = (e1u * rv - e1v * ru) / det;
+  return a >= 0.0 && b >= 0.0 && a + b <= 1.0;
+}
+
 inline double dotf(const Vec3& a, const float* b) {
   return a.x() * double(b[0]) + a.y() * double(b[1]) + a.z() * double(b[2]);
 }
@@ -710,8 +753,15 @@ Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, con
   const double ru = u - cu[0], rv = v - cv[0];
   const double det = e1u * e2v - e1v * e2u;
   const double ba = (ru * e2v - rv * e2u) / det, bb = (e1u * rv - e1v * ru) / det;
-  if (!(ba >= -kNodeSlack && bb >= -kNodeSlack && ba + bb <= 1.0 + kNodeSlack))
+  if (!(ba >= -kNodeSlack && bb >= -kNodeSlack && ba + bb <= 1.0 + kNodeSlack)) {
+    // A root outside the region: none in it when the parent holds that root and meets the ray
+    // at most once.
+    const double dp = dotf(d, sub.parentAxis), sinParent = double(sub.parentSinCone);
+    if (injective && dp * dp > sinParent * sinParent * d.squaredNorm() &&
+        inRegion(sub.path, sub.level - 1, u, v))
+      return Solved::None;
     return Solved::Unknown;
+  }
   if (!(u >= -kDomainSlack && v >= -kDomainSlack && u + v <= 1.0 + kDomainSlack))
     return Solved::Unknown;
   if (!(t > tmin && t < tmax)) return injective ? Solved::None : Solved::Unknown;
@@ -915,6 +965,8 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
       Item child{children[size_t(m)],
                  makeSubPatch(children[size_t(m)], parent.piece, parent.level + 1,
                               parent.path | (m << (2 * parent.level)))};
+      std::copy(parent.axis, parent.axis + 3, child.sub.parentAxis);
+      child.sub.parentSinCone = parent.sinCone;
       if (m == 0)
         items[at] = child;
       else

@@ -154,6 +154,45 @@ TEST(BezierSubPatch, ConeCertifiesOneSignOfTheProjectedJacobian) {
   EXPECT_GT(certified, 100);
 }
 
+// The parent's cone, kept by each region, holds for the whole parent region.
+TEST(BezierSubPatch, ParentConeCertifiesTheParentRegion) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  Pcg32 rng(59);
+  int certified = 0;
+  constexpr int kSteps = 12;
+  for (const BezierSubPatch& s : subs) {
+    if (s.level == 0) {
+      EXPECT_GT(s.parentSinCone, 1.0f);
+      continue;
+    }
+    if (s.parentSinCone > 1.0f) continue;
+    BezierSubPatch parent = s;
+    parent.level = uint8_t(s.level - 1);
+    const BezierTriangle& piece = pieces[s.piece];
+    const Vec3 axis = vec(s.parentAxis).normalized();
+    for (int r = 0; r < 4; ++r) {
+      const double angle =
+          0.5 * kPi - std::asin(std::min(1.0, double(s.parentSinCone))) - 0.01 * rng.nextDouble();
+      if (angle <= 0.0) continue;
+      const Vec3 t = safeNormalized(axis.cross(uniformDirection(rng)));
+      const Vec3 d = (r % 2 ? 1.0 : -1.0) * (std::cos(angle) * axis + std::sin(angle) * t);
+      ++certified;
+      double lo = kInfinity, hi = -kInfinity;
+      for (int i = 0; i <= kSteps; ++i)
+        for (int j = 0; i + j <= kSteps; ++j) {
+          const Vec2 uv = pieceUV(parent, double(i) / kSteps, double(j) / kSteps);
+          Vec3 du, dv;
+          piece.derivatives(uv.x(), uv.y(), du, dv);
+          const double jac = d.dot(du.cross(dv));
+          lo = std::min(lo, jac), hi = std::max(hi, jac);
+        }
+      EXPECT_TRUE(lo >= 0.0 || hi <= 0.0) << s.piece << ": " << lo << " " << hi;
+    }
+  }
+  EXPECT_GT(certified, 100);
+}
+
 // The nearest hit over a piece's sub-patches against intersectBezierTriangle on the whole
 // piece: the same hits, to 1e-9, on rays aimed at the piece (a quarter of them grazing) and at
 // random.

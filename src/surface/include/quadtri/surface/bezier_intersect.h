@@ -95,6 +95,11 @@ struct BezierSubPatch {
   /// vanishes): a ray with |d̂·axis| > sinCone meets the region at most once.
   float axis[3] = {};
   float sinCone = 2.0f;
+  /// The same for the region it was split from (sinCone 2 at level 0): where it proves a ray
+  /// meets the parent at most once, a root Newton finds in the parent outside this region
+  /// proves that none lies in it.
+  float parentAxis[3] = {};
+  float parentSinCone = 2.0f;
   float lo[3] = {}, hi[3] = {};  ///< box of the region's control points
   uint32_t piece = 0;            ///< the piece's index
   uint8_t level = 0;             ///< 4-splits from the piece (0: the whole piece)
