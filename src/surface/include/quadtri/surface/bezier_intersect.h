@@ -34,10 +34,14 @@
 // projected cross with one sign, which is the injectivity test above for the whole region: it
 // meets the region at most once, so Newton in 3D on the piece, from where the ray crosses the
 // corner triangle's plane, settles it when it converges in the region (a hit, or none in range).
+// A root it finds outside the region proves the region empty when the parent region's cone
+// (kept too) proves the ray meets the parent at most once and the root lies in the parent.
 // Otherwise (a ray nearly tangent to the region, or Newton failing or leaving the region), the
 // subdivision above runs on the region alone, in a frame whose y axis is the cone's axis as
 // seen across the ray, so that the region's thin projection keeps thin boxes; a root Newton found
-// there bounds its search. Its last level stays 1/1024 of the piece.
+// there bounds its search. Its last level stays 1/1024 of the piece. Rendering queries there also
+// cull a node whose control points all lie beyond a line through the origin across an edge of
+// its corner triangle. All-hits queries keep whole pieces and the search above as it was.
 #pragma once
 
 #include <cstdint>
