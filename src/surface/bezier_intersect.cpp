@@ -1,8 +1,12 @@
 #include "quadtri/surface/bezier_intersect.h"
 
+#include <tbb/blocked_range.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "quadtri/math/parallel.h"
 
 namespace quadtri {
 namespace {
@@ -933,53 +937,70 @@ Bounds3 BezierSubPatch::bounds() const {
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees, size_t budget) {
   if (budget == 0) budget = std::max<size_t>(16384, 8 * pieces.size());
+  constexpr size_t kMaxRegions = size_t(1) << (2 * BezierSubPatch::kMaxLevel);
+  // Each piece's share of the budget, split among its regions on its own (in parallel, in a
+  // fixed slot each, so the result does not depend on the threads).
+  const size_t share =
+      std::clamp<size_t>(budget / std::max<size_t>(pieces.size(), 1), 1, kMaxRegions);
   const double sinMax = std::sin(coneDegrees * kPi / 180.0);
-  struct Item {
-    BezierTriangle net;
-    BezierSubPatch sub;
-  };
-  std::vector<Item> items;
-  items.reserve(std::min(budget, 64 * pieces.size()));
-  for (size_t i = 0; i < pieces.size(); ++i)
-    items.push_back({pieces[i], makeSubPatch(pieces[i], uint32_t(i), 0, 0)});
-  // The widest cone first, while the budget lasts.
-  auto splittable = [&](size_t i) {
-    return items[i].sub.level < BezierSubPatch::kMaxLevel && items[i].sub.sinCone > sinMax;
-  };
-  auto narrower = [&](size_t a, size_t b) {
-    const float ca = items[a].sub.sinCone, cb = items[b].sub.sinCone;
-    return ca < cb || (ca == cb && a > b);
-  };
-  std::vector<size_t> heap;
-  for (size_t i = 0; i < items.size(); ++i)
-    if (splittable(i)) heap.push_back(i);
-  std::make_heap(heap.begin(), heap.end(), narrower);
-  while (!heap.empty() && items.size() + 3 <= budget) {
-    std::pop_heap(heap.begin(), heap.end(), narrower);
-    const size_t at = heap.back();
-    heap.pop_back();
-    const BezierSubPatch parent = items[at].sub;
-    const std::array<BezierTriangle, 4> children = subdivideBezierTriangle(items[at].net);
-    for (int m = 0; m < 4; ++m) {
-      const size_t slot = m == 0 ? at : items.size();
-      Item child{children[size_t(m)],
-                 makeSubPatch(children[size_t(m)], parent.piece, parent.level + 1,
-                              parent.path | (m << (2 * parent.level)))};
-      std::copy(parent.axis, parent.axis + 3, child.sub.parentAxis);
-      child.sub.parentSinCone = parent.sinCone;
-      if (m == 0)
-        items[at] = child;
-      else
-        items.push_back(child);
-      if (splittable(slot)) {
-        heap.push_back(slot);
-        std::push_heap(heap.begin(), heap.end(), narrower);
-      }
-    }
-  }
+  std::vector<BezierSubPatch> slots(pieces.size() * share);
+  std::vector<uint8_t> counts(pieces.size(), 0);
+  parallelForRange(
+      tbb::blocked_range<size_t>(0, pieces.size(), 256),
+      [&](const tbb::blocked_range<size_t>& range) {
+        struct Item {
+          BezierTriangle net;
+          BezierSubPatch sub;
+        };
+        std::vector<Item> items;
+        std::vector<size_t> heap;
+        for (size_t p = range.begin(); p != range.end(); ++p) {
+          items.clear();
+          heap.clear();
+          items.push_back({pieces[p], makeSubPatch(pieces[p], uint32_t(p), 0, 0)});
+          // The widest cone first, while the share lasts.
+          auto splittable = [&](size_t i) {
+            return items[i].sub.level < BezierSubPatch::kMaxLevel && items[i].sub.sinCone > sinMax;
+          };
+          auto narrower = [&](size_t a, size_t b) {
+            const float ca = items[a].sub.sinCone, cb = items[b].sub.sinCone;
+            return ca < cb || (ca == cb && a > b);
+          };
+          if (splittable(0)) heap.push_back(0);
+          while (!heap.empty() && items.size() + 3 <= share) {
+            std::pop_heap(heap.begin(), heap.end(), narrower);
+            const size_t at = heap.back();
+            heap.pop_back();
+            const BezierSubPatch parent = items[at].sub;
+            const std::array<BezierTriangle, 4> children = subdivideBezierTriangle(items[at].net);
+            for (int m = 0; m < 4; ++m) {
+              const size_t slot = m == 0 ? at : items.size();
+              Item child{children[size_t(m)],
+                         makeSubPatch(children[size_t(m)], parent.piece, parent.level + 1,
+                                      parent.path | (m << (2 * parent.level)))};
+              std::copy(parent.axis, parent.axis + 3, child.sub.parentAxis);
+              child.sub.parentSinCone = parent.sinCone;
+              if (m == 0)
+                items[at] = child;
+              else
+                items.push_back(child);
+              if (splittable(slot)) {
+                heap.push_back(slot);
+                std::push_heap(heap.begin(), heap.end(), narrower);
+              }
+            }
+          }
+          for (size_t k = 0; k < items.size(); ++k) slots[p * share + k] = items[k].sub;
+          counts[p] = uint8_t(items.size());
+        }
+      });
   std::vector<BezierSubPatch> out;
-  out.reserve(items.size());
-  for (const Item& item : items) out.push_back(item.sub);
+  size_t total = 0;
+  for (uint8_t c : counts) total += c;
+  out.reserve(total);
+  for (size_t p = 0; p < pieces.size(); ++p)
+    out.insert(out.end(), slots.begin() + std::ptrdiff_t(p * share),
+               slots.begin() + std::ptrdiff_t(p * share + counts[p]));
   return out;
 }
 

@@ -77,13 +77,25 @@ TEST(BezierSubPatch, RegionsTileEveryPiece) {
   for (const BezierSubPatch& s : subs)
     if (s.piece == pieces.size() - 1) deepest = std::max(deepest, int(s.level));
   EXPECT_EQ(deepest, BezierSubPatch::kMaxLevel);
-  // A budget bounds the count; the regions still tile every piece.
-  const std::vector<BezierSubPatch> few = bezierSubPatches(pieces, 10.0, 40);
-  EXPECT_LE(few.size(), 40u);
+  // A budget bounds the count, shared evenly by the pieces (4 each: one split); the regions still
+  // tile every piece.
+  const std::vector<BezierSubPatch> few = bezierSubPatches(pieces, 10.0, 4 * pieces.size() + 3);
+  EXPECT_LE(few.size(), 4 * pieces.size());
   EXPECT_GT(few.size(), pieces.size());
   std::vector<double> fewArea(pieces.size(), 0.0);
-  for (const BezierSubPatch& s : few) fewArea[s.piece] += 0.5 / double(1 << (2 * s.level));
+  for (const BezierSubPatch& s : few) {
+    EXPECT_LE(s.level, 1);
+    fewArea[s.piece] += 0.5 / double(1 << (2 * s.level));
+  }
   for (size_t p = 0; p < pieces.size(); ++p) EXPECT_DOUBLE_EQ(fewArea[p], 0.5) << p;
+  // The result is the same whatever the threads did.
+  const std::vector<BezierSubPatch> again = bezierSubPatches(pieces);
+  ASSERT_EQ(again.size(), subs.size());
+  for (size_t i = 0; i < subs.size(); ++i) {
+    EXPECT_EQ(again[i].piece, subs[i].piece);
+    EXPECT_EQ(again[i].level, subs[i].level);
+    EXPECT_EQ(again[i].path, subs[i].path);
+  }
   // Each region's corners are the piece's points: corner 0 is the prism's base.
   for (const BezierSubPatch& s : subs) {
     if (s.sinCone > 1.0) continue;
