@@ -40,7 +40,7 @@ constexpr int kSamplesPerPixel = 16;
 // Raw throughput keeps the fastest of a few passes: the one least disturbed by other processes.
 constexpr int kRawPasses = 3;
 const char* const kModels[] = {"shading", "quadric-param", "quadric-implicit",
-                               "quadric-implicit-robust"};
+                               "quadric-implicit-robust", "quadric-g1"};
 
 /// Seconds to trace a batch of rays and how many hit something.
 struct TraceTiming {

@@ -37,9 +37,12 @@ struct PatchGeometry {
   double margin = 0.0;
 };
 
-// The same for Bézier pieces.
+// The same for Bézier pieces. Rendering structures trace `subPatches` (regions of the pieces,
+// the primitives of Embree's user geometry, each hit reported as its piece's); those that collect
+// every hit (crack rates) have none and trace whole pieces, one primitive each.
 struct BezierGeometry {
   const std::vector<BezierTriangle>* pieces = nullptr;
+  std::vector<BezierSubPatch> subPatches;
   double margin = 0.0;
 };
 
@@ -174,7 +177,9 @@ RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geome
 void bezierBounds(const RTCBoundsFunctionArguments* args) {
   acquireEdge(args->geometryUserPtr);
   const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
-  writeBounds((*g->pieces)[args->primID].bounds, g->margin, args->bounds_o);
+  writeBounds(g->subPatches.empty() ? (*g->pieces)[args->primID].bounds
+                                    : g->subPatches[args->primID].bounds(),
+              g->margin, args->bounds_o);
   releaseEdge(&g->margin);
 }
 
@@ -182,10 +187,10 @@ void intersectBezier(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto* ctx = reinterpret_cast<TraceContext*>(args->context);
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const std::vector<BezierTriangle>& pieces =
-      *static_cast<const BezierGeometry*>(args->geometryUserPtr)->pieces;
-  const BezierTriangle& piece = pieces[args->primID];
+  const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
+  const std::vector<BezierTriangle>& pieces = *g->pieces;
   if (ctx->hits) {  // allHits(): every hit of the piece, without shortening the ray
+    const BezierTriangle& piece = pieces[args->primID];
     thread_local std::vector<BezierHit> found;
     found.clear();
     intersectBezierTriangleAll(piece, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
@@ -199,18 +204,29 @@ void intersectBezier(const RTCIntersectFunctionNArguments* args) {
       rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
   const double tmax = userIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
   BezierHit h;
-  if (!intersectBezierTriangle(piece, ctx->ray->origin, ctx->ray->direction, ctx->tnear, tmax, h))
-    return;
+  unsigned primitive = args->primID;
+  if (g->subPatches.empty()) {
+    if (!intersectBezierTriangle(pieces[primitive], ctx->ray->origin, ctx->ray->direction,
+                                 ctx->tnear, tmax, h))
+      return;
+  } else {
+    const BezierSubPatch& sub = g->subPatches[primitive];
+    primitive = sub.piece;
+    const BezierTriangle& piece = pieces[primitive];
+    if (!intersectBezierSubPatch(piece, sub, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                                 tmax, h))
+      return;
+  }
   ctx->patchT = h.t;
   ctx->patchGeometry = args->geomID;
-  ctx->patchPrimitive = args->primID;
+  ctx->patchPrimitive = primitive;
   ctx->patches = nullptr;
   ctx->pieces = &pieces;
   ctx->pieceU = h.u;
   ctx->pieceV = h.v;
   rayhit->ray.tfar = roundDown(h.t);
   rayhit->hit.geomID = args->geomID;
-  rayhit->hit.primID = args->primID;
+  rayhit->hit.primID = primitive;  // the piece's index, also for a sub-patch
   rayhit->hit.instID[0] = args->context->instID[0];
   rayhit->hit.u = float(h.u);
   rayhit->hit.v = float(h.v);
@@ -220,11 +236,19 @@ void occludedBezier(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
   auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  const std::vector<BezierTriangle>& pieces =
-      *static_cast<const BezierGeometry*>(args->geometryUserPtr)->pieces;
-  if (occludesBezierTriangle(pieces[args->primID], ctx->ray->origin, ctx->ray->direction,
-                             ctx->tnear, ctx->ray->tfar))
-    ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
+  const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
+  const std::vector<BezierTriangle>& pieces = *g->pieces;
+  bool hit;
+  if (g->subPatches.empty()) {
+    hit = occludesBezierTriangle(pieces[args->primID], ctx->ray->origin, ctx->ray->direction,
+                                 ctx->tnear, ctx->ray->tfar);
+  } else {
+    const BezierSubPatch& sub = g->subPatches[args->primID];
+    const BezierTriangle& piece = pieces[sub.piece];
+    hit = occludesBezierSubPatch(piece, sub, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                                 ctx->ray->tfar);
+  }
+  if (hit) ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
 }
 
 void fillRay(const Ray& ray, RTCRay& out) {
@@ -415,11 +439,14 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
   auto user = std::make_unique<BezierGeometry>();
   user->pieces = &pieces;
   user->margin = 1e-5 * extent;
+  if (!impl_->options.collectHits) user->subPatches = bezierSubPatches(pieces);
+  const size_t primitives = user->subPatches.empty() ? pieces.size() : user->subPatches.size();
   const uint32_t id =
-      impl_->attachUserGeometry(pieces.size(), user.get(), &bezierBounds, &intersectBezier,
+      impl_->attachUserGeometry(primitives, user.get(), &bezierBounds, &intersectBezier,
                                 &occludedBezier, "attaching the Bézier pieces");
+  impl_->bytes +=
+      pieces.size() * sizeof(BezierTriangle) + user->subPatches.size() * sizeof(BezierSubPatch);
   impl_->bezierGeometries.push_back(std::move(user));
-  impl_->bytes += pieces.size() * sizeof(BezierTriangle);
   return id;
 }
 

@@ -111,6 +111,61 @@ TEST(Accel, BezierPiecesAgreeWithTheDirectIntersector) {
   EXPECT_GT(hitCount, 2000);
 }
 
+// A rendering structure traces the pieces' sub-patches: the same nearest hits, to 1e-9, each
+// reported as its piece's, and the same occlusion.
+TEST(Accel, BezierSubPatchesAgreeWithTheDirectIntersector) {
+  enableFlushToZero();
+  const std::vector<BezierTriangle> pieces = scatteredPieces();
+  Accel accel;
+  const uint32_t id = accel.addBezierTriangles(pieces);
+  accel.commit();
+  EXPECT_EQ(accel.geometryBytes(), pieces.size() * sizeof(BezierTriangle) +
+                                       bezierSubPatches(pieces).size() * sizeof(BezierSubPatch));
+  Pcg32 rng(53);
+  int hitCount = 0, compared = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 target(3.0 * rng.nextDouble() - 0.5, 3.0 * rng.nextDouble() - 0.5,
+                      3.0 * rng.nextDouble() - 0.5);
+    const Vec3 d = uniformDirection(rng);
+    const Ray ray{target - 4.0 * d, d, 0.0, 4.0 + 4.0 * rng.nextDouble()};
+    BezierHit best;
+    uint32_t bestPiece = ~0u;
+    for (uint32_t p = 0; p < pieces.size(); ++p) {
+      BezierHit h;
+      if (intersectBezierTriangle(pieces[p], ray.origin, ray.direction, ray.tnear, ray.tfar, h) &&
+          h.t < best.t)
+        best = h, bestPiece = p;
+    }
+    const RayHit hit = accel.intersect(ray);
+    if (hit.valid()) {
+      ++hitCount;
+      EXPECT_EQ(hit.geometry, id);
+      const BezierTriangle& piece = pieces[hit.primitive];
+      EXPECT_NEAR((piece.position(hit.u, hit.v) - (ray.origin + hit.t * ray.direction)).norm(), 0.0,
+                  1e-9 * (1.0 + hit.t));
+      EXPECT_NEAR((hit.geometricNormal - piece.normal(hit.u, hit.v)).norm(), 0.0, 1e-12);
+    }
+    EXPECT_EQ(accel.occluded(ray), hit.valid()) << i;
+    if (hit.valid() != (bestPiece != ~0u)) {
+      // Only a ray within a hair of a double root may see it one way and not the other.
+      const RayHit& h = hit.valid() ? hit : RayHit{};
+      const Vec3 n = hit.valid() ? h.geometricNormal : pieces[bestPiece].normal(best.u, best.v);
+      EXPECT_LT(std::abs(n.dot(d)), 1e-4) << i;
+      continue;
+    }
+    if (!hit.valid()) continue;
+    ++compared;
+    EXPECT_NEAR(hit.t, best.t, 1e-9 * (1.0 + best.t)) << i;
+    // Where two pieces' hits tie (a ray through their shared edge), either is the nearest.
+    if (hit.primitive == bestPiece) {
+      EXPECT_NEAR(hit.u, best.u, 1e-7) << i;
+      EXPECT_NEAR(hit.v, best.v, 1e-7) << i;
+    }
+  }
+  EXPECT_GT(compared, 2000);
+  EXPECT_GE(hitCount, compared);
+}
+
 TEST(Accel, BezierPieceOrientationSetsTheNormal) {
   BezierTriangle piece = fixtures::flatPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
   std::vector<BezierTriangle> up{piece};

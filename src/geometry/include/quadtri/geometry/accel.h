@@ -48,10 +48,11 @@ class Accel {
   /// Adds quadric patches as one Embree user geometry with a bound per patch; the patches are
   /// referenced, not copied, and must outlive the Accel. Returns its geometry id.
   uint32_t addQuadricPatches(const std::vector<QuadricPatch>& patches);
-  /// Adds Bézier pieces as one Embree user geometry, one primitive per piece bounded by its
-  /// control points, intersected in double precision (bezier_intersect.h); referenced like the
-  /// patches. A hit's (u, v) is the piece's and its geometricNormal piece.normal(u, v).
-  /// Returns its geometry id.
+  /// Adds Bézier pieces as one Embree user geometry, intersected in double precision
+  /// (bezier_intersect.h); referenced like the patches. Its primitives are the pieces'
+  /// sub-patches (bezierSubPatches), each bounded by its control points, or, with
+  /// Options.collectHits, the whole pieces. A hit's primitive is the piece's index, its (u, v)
+  /// the piece's and its geometricNormal piece.normal(u, v). Returns its geometry id.
   uint32_t addBezierTriangles(const std::vector<BezierTriangle>& pieces);
   void commit();
 

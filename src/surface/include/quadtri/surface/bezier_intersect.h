@@ -23,8 +23,28 @@
 // size) Newton is tried anyway, from the corners too where the net may fold, and should it
 // still fail, the planar corner triangle stands in, so no hit is lost. A budget of nodes bounds
 // the work on degenerate pieces.
+//
+// Rendering traces sub-patches (BezierSubPatch): regions of a piece, up to 3 midpoint 4-splits
+// deep, each an Embree primitive with its own box, so that the BVH culls what the subdivision
+// culled before. Each region keeps a prism that holds its control points (the corner triangle's
+// plane with the range of heights above it, and the least barycentric coordinate of a control
+// point's projection for each corner) and the cone of its derivative crosses ∂u × ∂v (over all
+// pairs of control vectors). A ray that misses the prism misses the region (a few dot products).
+// One whose angle to the cone's axis is below 90° less the cone's half-angle sees every
+// projected cross with one sign, which is the injectivity test above for the whole region: it
+// meets the region at most once, so Newton in 3D on the piece, from where the ray crosses the
+// corner triangle's plane, settles it when it converges in the region (a hit, or none in range).
+// A root it finds outside the region proves the region empty when the parent region's cone
+// (kept too) proves the ray meets the parent at most once and the root lies in the parent.
+// Otherwise (a ray nearly tangent to the region, or Newton failing or leaving the region), the
+// subdivision above runs on the region alone, in a frame whose y axis is the cone's axis as
+// seen across the ray, so that the region's thin projection keeps thin boxes; a root Newton found
+// there bounds its search. Its last level stays 1/1024 of the piece. Rendering queries there also
+// cull a node whose control points all lie beyond a line through the origin across an edge of
+// its corner triangle. All-hits queries keep whole pieces and the search above as it was.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "quadtri/math/vec.h"
@@ -57,5 +77,58 @@ size_t intersectBezierTriangleAll(const BezierTriangle& piece, const Vec3& o, co
 /// and piece ids, and bounds. Sub-triangle m at its (u', v') is the piece at
 /// c0 + u'(c1 − c0) + v'(c2 − c0) for its corners c0, c1, c2 above.
 std::array<BezierTriangle, 4> subdivideBezierTriangle(const BezierTriangle& piece);
+
+/// A region of a piece that rendering traces as one primitive (accel.cpp): the sub-triangle
+/// reached by `level` midpoint 4-splits (subdivideBezierTriangle's numbering), with what rejects
+/// most rays at the cost of a few dot products and tells when one Newton solve is exact.
+/// Directions and bounds are floats, computed so that they hold for the rounded directions.
+struct BezierSubPatch {
+  static constexpr int kMaxLevel = 3;
+  /// The prism that holds the region's control points: corner 0 `p0`, the corner triangle's
+  /// unit normal `n`, and g1, g2 such that (x − p0)·g1 and (x − p0)·g2 are the corner triangle's
+  /// barycentric coordinates 1 and 2 of x's projection along n. Every control point has
+  /// (b − p0)·n in [hlo, hhi] and barycentric coordinate m at least lmin[m] (grown by a rounding
+  /// margin). A degenerate corner triangle has an unbounded prism.
+  Vec3 p0 = Vec3::Zero();
+  float n[3] = {}, g1[3] = {}, g2[3] = {};
+  float hlo = 0.0f, hhi = 0.0f;
+  float lmin[3] = {};
+  float inverseSize = 0.0f;  ///< 1 / the corner triangle's longest side (0 when degenerate)
+  /// Every cross product of a control vector of ∂/∂u with one of ∂/∂v makes an angle with the
+  /// unit `axis` whose sine is at most `sinCone` (2 when some does not lie on the axis' side or
+  /// vanishes): a ray with |d̂·axis| > sinCone meets the region at most once.
+  float axis[3] = {};
+  float sinCone = 2.0f;
+  /// The same for the region it was split from (sinCone 2 at level 0): where it proves a ray
+  /// meets the parent at most once, a root Newton finds in the parent outside this region
+  /// proves that none lies in it.
+  float parentAxis[3] = {};
+  float parentSinCone = 2.0f;
+  float lo[3] = {}, hi[3] = {};  ///< box of the region's control points
+  uint32_t piece = 0;            ///< the piece's index
+  uint8_t level = 0;             ///< 4-splits from the piece (0: the whole piece)
+  uint8_t path = 0;              ///< the child taken at split l in bits 2l and 2l + 1
+
+  /// The region's corners in the piece's (u, v).
+  void corners(double* cu, double* cv) const;
+  Bounds3 bounds() const;
+};
+
+/// The sub-patches that rendering traces in place of `pieces`: the pieces, then, while fewer
+/// than `budget` (0: the larger of 16384 and 8 per piece), the region with the widest derivative
+/// cone split in 4, down to BezierSubPatch::kMaxLevel splits or a cone of `coneDegrees`. The
+/// narrower the cone, the fewer rays meet a region where one Newton solve does not settle it.
+std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
+                                             double coneDegrees = 10.0, size_t budget = 0);
+
+/// Nearest hit of o + t·d with the sub-patch's region of `piece` (`sub.piece`'s piece), for t in
+/// (tmin, tmax); (u, v) are the piece's. Exact as intersectBezierTriangle, restricted to the
+/// region (up to 1e-6 of its size). Returns false, leaving `hit` untouched, when there is none.
+bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
+                             const Vec3& d, double tmin, double tmax, BezierHit& hit);
+
+/// True when the ray hits the sub-patch's region anywhere in (tmin, tmax).
+bool occludesBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
+                            const Vec3& d, double tmin, double tmax);
 
 }  // namespace quadtri

@@ -1,0 +1,275 @@
+// The sub-patches rendering traces in place of whole Bézier pieces: they tile each piece, their
+// boxes, prisms and derivative cones hold what they claim (checked by dense sampling), and their
+// hits are the whole-piece intersector's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "fixtures/bezier_pieces.h"
+#include "quadtri/geometry/rng.h"
+#include "quadtri/surface/bezier_intersect.h"
+
+namespace quadtri {
+namespace {
+
+using fixtures::bumpyPiece;
+using fixtures::paraboloidPiece;
+
+// Curved pieces: bumpy height fields (some strongly), paraboloids, and a piece of the unit sphere
+// (the quartic interpolating it), as the G1 model's pieces of a coarse mesh.
+std::vector<BezierTriangle> curvedPieces() {
+  Pcg32 rng(41);
+  std::vector<BezierTriangle> pieces;
+  for (int i = 0; i < 12; ++i) {
+    const double amplitude = i < 6 ? 0.1 : 0.5;
+    BezierTriangle piece = bumpyPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), amplitude, rng);
+    for (Vec3& b : piece.b) b.head<2>() += 0.1 * Vec2(rng.nextDouble(), rng.nextDouble());
+    piece.updateBounds();
+    pieces.push_back(piece);
+  }
+  pieces.push_back(paraboloidPiece(Vec2(-1, -1), Vec2(1.5, -1), Vec2(-1, 1.5)));
+  pieces.push_back(paraboloidPiece(Vec2(0.2, 0.1), Vec2(2.5, 0.3), Vec2(0.5, 2.0)));
+  // A degenerate piece: corner 2 collapsed onto corner 0.
+  BezierTriangle collapsed = bumpyPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 0.2, rng);
+  for (int k = 0; k <= 4; ++k)
+    collapsed.b[size_t(BezierTriangle::index(0, k))] =
+        collapsed.b[size_t(BezierTriangle::index(0, 0))];
+  collapsed.updateBounds();
+  pieces.push_back(collapsed);
+  for (size_t i = 0; i < pieces.size(); ++i) pieces[i].triangle = uint32_t(i);
+  return pieces;
+}
+
+// The piece's (u, v) at the sub-patch's own barycentric (a, b).
+Vec2 pieceUV(const BezierSubPatch& s, double a, double b) {
+  double cu[3], cv[3];
+  s.corners(cu, cv);
+  return Vec2(cu[0] + a * (cu[1] - cu[0]) + b * (cu[2] - cu[0]),
+              cv[0] + a * (cv[1] - cv[0]) + b * (cv[2] - cv[0]));
+}
+
+Vec3 vec(const float* f) {
+  return Vec3(f[0], f[1], f[2]);
+}
+
+TEST(BezierSubPatch, RegionsTileEveryPiece) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  std::vector<double> area(pieces.size(), 0.0);
+  std::vector<int> count(pieces.size(), 0);
+  for (const BezierSubPatch& s : subs) {
+    ASSERT_LT(s.piece, pieces.size());
+    EXPECT_LE(int(s.level), BezierSubPatch::kMaxLevel);
+    double cu[3], cv[3];
+    s.corners(cu, cv);
+    const double a = 0.5 * ((cu[1] - cu[0]) * (cv[2] - cv[0]) - (cv[1] - cv[0]) * (cu[2] - cu[0]));
+    EXPECT_DOUBLE_EQ(a, 0.5 / double(1 << (2 * s.level)));  // positive: the piece's orientation
+    area[s.piece] += a;
+    ++count[s.piece];
+  }
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    EXPECT_NEAR(area[p], 0.5, 1e-15) << p;
+    EXPECT_GE(count[p], 1) << p;
+  }
+  // The strongly curved pieces are split, and the degenerate one to the last level.
+  EXPECT_GT(subs.size(), 4 * pieces.size());
+  int deepest = 0;
+  for (const BezierSubPatch& s : subs)
+    if (s.piece == pieces.size() - 1) deepest = std::max(deepest, int(s.level));
+  EXPECT_EQ(deepest, BezierSubPatch::kMaxLevel);
+  // A budget bounds the count, shared evenly by the pieces (4 each: one split); the regions still
+  // tile every piece.
+  const std::vector<BezierSubPatch> few = bezierSubPatches(pieces, 10.0, 4 * pieces.size() + 3);
+  EXPECT_LE(few.size(), 4 * pieces.size());
+  EXPECT_GT(few.size(), pieces.size());
+  std::vector<double> fewArea(pieces.size(), 0.0);
+  for (const BezierSubPatch& s : few) {
+    EXPECT_LE(s.level, 1);
+    fewArea[s.piece] += 0.5 / double(1 << (2 * s.level));
+  }
+  for (size_t p = 0; p < pieces.size(); ++p) EXPECT_DOUBLE_EQ(fewArea[p], 0.5) << p;
+  // The result is the same whatever the threads did.
+  const std::vector<BezierSubPatch> again = bezierSubPatches(pieces);
+  ASSERT_EQ(again.size(), subs.size());
+  for (size_t i = 0; i < subs.size(); ++i) {
+    EXPECT_EQ(again[i].piece, subs[i].piece);
+    EXPECT_EQ(again[i].level, subs[i].level);
+    EXPECT_EQ(again[i].path, subs[i].path);
+  }
+  // Each region's corners are the piece's points: corner 0 is the prism's base.
+  for (const BezierSubPatch& s : subs) {
+    if (s.sinCone > 1.0) continue;
+    const Vec2 uv = pieceUV(s, 0.0, 0.0);
+    const Vec3 p0 = pieces[s.piece].position(uv.x(), uv.y());
+    EXPECT_NEAR((p0 - s.p0).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(BezierSubPatch, BoxAndPrismHoldEveryPointOfTheRegion) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  constexpr int kSteps = 24;
+  for (const BezierSubPatch& s : subs) {
+    const BezierTriangle& piece = pieces[s.piece];
+    for (int i = 0; i <= kSteps; ++i)
+      for (int j = 0; i + j <= kSteps; ++j) {
+        const Vec2 uv = pieceUV(s, double(i) / kSteps, double(j) / kSteps);
+        const Vec3 p = piece.position(uv.x(), uv.y());
+        EXPECT_TRUE((p.array() >= s.bounds().lo.array() - 1e-12).all() &&
+                    (p.array() <= s.bounds().hi.array() + 1e-12).all())
+            << s.piece << " " << i << " " << j;
+        const Vec3 r = p - s.p0;
+        const double h = r.dot(vec(s.n)), l1 = r.dot(vec(s.g1)), l2 = r.dot(vec(s.g2));
+        EXPECT_GE(h, s.hlo);
+        EXPECT_LE(h, s.hhi);
+        EXPECT_GE(l1, s.lmin[1]);
+        EXPECT_GE(l2, s.lmin[2]);
+        EXPECT_GE(1.0 - l1 - l2, s.lmin[0]);
+      }
+  }
+}
+
+TEST(BezierSubPatch, ConeCertifiesOneSignOfTheProjectedJacobian) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  Pcg32 rng(43);
+  int certified = 0;
+  constexpr int kSteps = 12;
+  for (const BezierSubPatch& s : subs) {
+    if (s.sinCone > 1.0) continue;
+    const BezierTriangle& piece = pieces[s.piece];
+    for (int r = 0; r < 8; ++r) {
+      // Directions just inside the cone's complement, where the fast path trusts it.
+      // The angle to the axis: just below 90° less the cone's half-angle.
+      const double angle =
+          0.5 * kPi - std::asin(std::min(1.0, double(s.sinCone))) - 0.01 * rng.nextDouble();
+      if (angle <= 0.0) continue;
+      const Vec3 axis = vec(s.axis).normalized();
+      const Vec3 t = safeNormalized(axis.cross(uniformDirection(rng)));
+      const Vec3 d = (r % 2 ? 1.0 : -1.0) * (std::cos(angle) * axis + std::sin(angle) * t);
+      ASSERT_GT(d.dot(vec(s.axis)) * d.dot(vec(s.axis)), double(s.sinCone) * s.sinCone);
+      ++certified;
+      double lo = kInfinity, hi = -kInfinity;
+      for (int i = 0; i <= kSteps; ++i)
+        for (int j = 0; i + j <= kSteps; ++j) {
+          const Vec2 uv = pieceUV(s, double(i) / kSteps, double(j) / kSteps);
+          Vec3 du, dv;
+          piece.derivatives(uv.x(), uv.y(), du, dv);
+          const double jac = d.dot(du.cross(dv));
+          lo = std::min(lo, jac), hi = std::max(hi, jac);
+        }
+      // One sign (zero where the piece's Jacobian vanishes, at the degenerate piece's collapsed
+      // edge).
+      EXPECT_TRUE(lo >= 0.0 || hi <= 0.0) << s.piece << ": " << lo << " " << hi;
+    }
+  }
+  EXPECT_GT(certified, 100);
+}
+
+// The parent's cone, kept by each region, holds for the whole parent region.
+TEST(BezierSubPatch, ParentConeCertifiesTheParentRegion) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  Pcg32 rng(59);
+  int certified = 0;
+  constexpr int kSteps = 12;
+  for (const BezierSubPatch& s : subs) {
+    if (s.level == 0) {
+      EXPECT_GT(s.parentSinCone, 1.0f);
+      continue;
+    }
+    if (s.parentSinCone > 1.0f) continue;
+    BezierSubPatch parent = s;
+    parent.level = uint8_t(s.level - 1);
+    const BezierTriangle& piece = pieces[s.piece];
+    const Vec3 axis = vec(s.parentAxis).normalized();
+    for (int r = 0; r < 4; ++r) {
+      const double angle =
+          0.5 * kPi - std::asin(std::min(1.0, double(s.parentSinCone))) - 0.01 * rng.nextDouble();
+      if (angle <= 0.0) continue;
+      const Vec3 t = safeNormalized(axis.cross(uniformDirection(rng)));
+      const Vec3 d = (r % 2 ? 1.0 : -1.0) * (std::cos(angle) * axis + std::sin(angle) * t);
+      ++certified;
+      double lo = kInfinity, hi = -kInfinity;
+      for (int i = 0; i <= kSteps; ++i)
+        for (int j = 0; i + j <= kSteps; ++j) {
+          const Vec2 uv = pieceUV(parent, double(i) / kSteps, double(j) / kSteps);
+          Vec3 du, dv;
+          piece.derivatives(uv.x(), uv.y(), du, dv);
+          const double jac = d.dot(du.cross(dv));
+          lo = std::min(lo, jac), hi = std::max(hi, jac);
+        }
+      EXPECT_TRUE(lo >= 0.0 || hi <= 0.0) << s.piece << ": " << lo << " " << hi;
+    }
+  }
+  EXPECT_GT(certified, 100);
+}
+
+// The nearest hit over a piece's sub-patches against intersectBezierTriangle on the whole
+// piece: the same hits, to 1e-9, on rays aimed at the piece (a quarter of them grazing) and at
+// random.
+TEST(BezierSubPatch, HitsAreTheWholePieceHits) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  Pcg32 rng(47);
+  int hits = 0, compared = 0;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    const BezierTriangle& piece = pieces[p];
+    const Vec3 centre = 0.5 * (piece.bounds.lo + piece.bounds.hi);
+    const double size = piece.bounds.diagonal().norm();
+    for (int i = 0; i < 1500; ++i) {
+      double u = rng.nextDouble(), v = rng.nextDouble();
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      const Vec3 target = i % 3 == 0 ? centre + size * (uniformDirection(rng) * rng.nextDouble())
+                                     : piece.position(u, v);
+      Vec3 d = uniformDirection(rng);
+      if (i % 4 == 1) {  // within a few degrees of the tangent plane
+        const Vec3 n = piece.normal(u, v);
+        if (n.squaredNorm() == 0.0) continue;
+        d = safeNormalized(d - d.dot(n) * n + 0.05 * (rng.nextDouble() - 0.5) * n);
+      }
+      const Vec3 o = target - (0.5 + 2.0 * rng.nextDouble()) * size * d;
+      const double tmax = i % 5 == 0 ? kInfinity : 4.0 * size * rng.nextDouble();
+      BezierHit whole;
+      const bool wholeHit = intersectBezierTriangle(piece, o, d, 0.0, tmax, whole);
+      BezierHit best;
+      bool anyHit = false, occluded = false;
+      for (const BezierSubPatch& s : subs) {
+        if (s.piece != p) continue;
+        BezierHit h;
+        if (intersectBezierSubPatch(piece, s, o, d, 0.0, tmax, h) && h.t < best.t) best = h;
+        anyHit |= h.t < kInfinity;
+        occluded |= occludesBezierSubPatch(piece, s, o, d, 0.0, tmax);
+      }
+      // Every hit lies on the surface.
+      if (anyHit) {
+        ++hits;
+        EXPECT_NEAR((piece.position(best.u, best.v) - (o + best.t * d)).norm(), 0.0,
+                    1e-9 * (size + best.t));
+      }
+      // The whole-piece search, out of nodes, misses some hits of the degenerate piece that its
+      // regions find (on the surface, checked above).
+      if (anyHit && !wholeHit && p == pieces.size() - 1) continue;
+      // Rays within 1e-6 of a double root may find or miss it either way: compare the rest.
+      if (wholeHit != anyHit) {
+        const BezierHit& h = wholeHit ? whole : best;
+        Vec3 du, dv;
+        piece.derivatives(h.u, h.v, du, dv);
+        const double cosine = std::abs(d.dot(safeNormalized(du.cross(dv))));
+        EXPECT_LT(cosine, 1e-4) << p << " " << i << " whole " << wholeHit;
+        continue;
+      }
+      EXPECT_EQ(occluded, anyHit) << p << " " << i;
+      if (!anyHit) continue;
+      ++compared;
+      EXPECT_NEAR(best.t, whole.t, 1e-9 * (size + whole.t)) << p << " " << i;
+      EXPECT_NEAR(best.u, whole.u, 1e-7) << p << " " << i;
+      EXPECT_NEAR(best.v, whole.v, 1e-7) << p << " " << i;
+    }
+  }
+  EXPECT_GT(compared, 3000);
+  EXPECT_GE(hits, compared);
+}
+
+}  // namespace
+}  // namespace quadtri
