@@ -1,7 +1,7 @@
 // Conversion throughput of every model (modelNames()), tessellation excluded: the time from a
 // loaded mesh to the model's patches, reported as input triangles per second, with 1 and with
 // 2 threads (tbb::global_control). A summary after the runs gives each model's seconds per
-// 1,000,000-triangle mesh at 2 threads beside the target of issue 11 (0.5 s), and the scaling
+// 1,000,000-triangle mesh at 2 threads beside the target (0.5 s), and the scaling
 // from 1 to 2 threads.
 //
 //   quadtri_bench --benchmark_filter=Convert --benchmark_min_time=0.1
@@ -21,7 +21,7 @@
 
 namespace {
 
-// Target of issue 11: a 1,000,000-triangle mesh converts in under 0.5 s on 2 cores.
+// The target: a 1,000,000-triangle mesh converts in under 0.5 s on 2 cores.
 constexpr double kTargetTrianglesPerSecond = 1e6 / 0.5;
 
 // The meshes are built once, on first use, and shared by every model's benchmark.

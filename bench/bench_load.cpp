@@ -1,4 +1,4 @@
-// Loading and writing meshes (issue 11's loading target): a 1,000,000-triangle torus written as
+// Loading and writing meshes (the loading target): a 1,000,000-triangle torus written as
 // OBJ and as binary PLY once, then timed as `quadtri convert big.obj --model flat -o big.ply`
 // spends it: loadMesh (the checks, Assimp, welding, repairs, normals, validation) and saveMesh.
 // On 2 threads (tbb::global_control), wall-clock time. A summary after the runs gives each
@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Target of issue 11: a 1,000,000-triangle OBJ or binary PLY loads and writes back as PLY in
+// The target: a 1,000,000-triangle OBJ or binary PLY loads and writes back as PLY in
 // under 1.5 s on 2 cores.
 constexpr double kTargetSeconds = 1.5;
 constexpr const char* kSpec = "torus:1,0.35,1000,500";

@@ -2,7 +2,7 @@
 // on the same icosphere at 20, 20,480 and 1,310,720 primitives (levels 0, 5 and 8), with the
 // same rays. Each ray starts on a sphere of radius 3 and aims at a uniform point of the unit
 // ball, so most rays hit; both structures see identical rays in identical order on one thread.
-// A summary gives each patch model's CPU time per ray ÷ the native triangles' (issue 11: at most
+// A summary gives each patch model's CPU time per ray ÷ the native triangles' (the target: at most
 // 1.5× at equal primitive count).
 //
 //   quadtri_bench --benchmark_filter=Peer --benchmark_min_time=0.2
