@@ -35,44 +35,53 @@ void SurfaceModel::setFallbacks(std::vector<uint8_t> flags) {
   fallbacks_ = std::move(flags);
 }
 
+namespace {
+
+using ModelFactory = std::unique_ptr<SurfaceModel> (*)(std::shared_ptr<const TriangleMesh>);
+
+/// One model: its name (as `--model` takes it) and how to convert a mesh with it.
+struct ModelEntry {
+  std::string_view name;
+  ModelFactory make;
+};
+
+template <typename M, auto... Args>
+std::unique_ptr<SurfaceModel> make(std::shared_ptr<const TriangleMesh> mesh) {
+  return std::make_unique<M>(std::move(mesh), Args...);
+}
+
+/// The models, in the order `--model all` lists them. Adding a model is its own files and one
+/// line here; the CLI, the JSON, the CSV, the study and Python take their names from it.
+constexpr ModelEntry kModels[] = {
+    {"flat", make<FlatModel, FlatModel::Normals::Geometric>},
+    {"shading", make<FlatModel, FlatModel::Normals::Interpolated>},
+    {"shading-offset", make<FlatModel, FlatModel::Normals::InterpolatedOffset>},
+    {"quadric-edges", make<EdgesModel, EdgesModel::Blend::Transfinite>},
+    {"quadric-param", make<ParamModel>},
+    {"quadric-implicit", make<ImplicitModel>},
+    {"quadric-edges-eq42", make<EdgesModel, EdgesModel::Blend::ThesisEq42>},
+    {"quadric-implicit-robust", make<RobustImplicitModel>},
+    {"phong", make<PhongModel>},
+    {"pn", make<PnModel>},
+    {"nagata", make<NagataModel>},
+    {"quadric-g1", make<G1Model>},
+};
+
+}  // namespace
+
 const std::vector<std::string>& modelNames() {
-  static const std::vector<std::string> names = {
-      "flat",
-      "shading",
-      "shading-offset",
-      "quadric-edges",
-      "quadric-param",
-      "quadric-implicit",
-      "quadric-edges-eq42",
-      "quadric-implicit-robust",
-      "phong",
-      "pn",
-      "nagata",
-      "quadric-g1",
-  };
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const ModelEntry& m : kModels) out.emplace_back(m.name);
+    return out;
+  }();
   return names;
 }
 
 std::unique_ptr<SurfaceModel> makeModel(std::string_view name,
                                         std::shared_ptr<const TriangleMesh> mesh) {
-  if (name == "flat")
-    return std::make_unique<FlatModel>(std::move(mesh), FlatModel::Normals::Geometric);
-  if (name == "shading")
-    return std::make_unique<FlatModel>(std::move(mesh), FlatModel::Normals::Interpolated);
-  if (name == "shading-offset")
-    return std::make_unique<FlatModel>(std::move(mesh), FlatModel::Normals::InterpolatedOffset);
-  if (name == "quadric-edges")
-    return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::Transfinite);
-  if (name == "quadric-param") return std::make_unique<ParamModel>(std::move(mesh));
-  if (name == "quadric-implicit") return std::make_unique<ImplicitModel>(std::move(mesh));
-  if (name == "quadric-edges-eq42")
-    return std::make_unique<EdgesModel>(std::move(mesh), EdgesModel::Blend::ThesisEq42);
-  if (name == "quadric-implicit-robust")
-    return std::make_unique<RobustImplicitModel>(std::move(mesh));
-  if (name == "phong") return std::make_unique<PhongModel>(std::move(mesh));
-  if (name == "pn") return std::make_unique<PnModel>(std::move(mesh));
-  if (name == "nagata") return std::make_unique<NagataModel>(std::move(mesh));
-  if (name == "quadric-g1") return std::make_unique<G1Model>(std::move(mesh));
+  for (const ModelEntry& m : kModels)
+    if (m.name == name) return m.make(std::move(mesh));
   fail("unknown model '{}': expected one of {}", name, fmt::join(modelNames(), ", "));
 }
 
