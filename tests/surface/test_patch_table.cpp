@@ -86,8 +86,9 @@ TEST_F(PatchTableTest, RecordsHoldThePatchJsonInTheirLayout) {
       EXPECT_GT(table.bridgeCount, 0u);
     }
     // Every field the layout names, with its shape: the fields of the JSON's first patch.
-    for (const auto& [key, value] : j["patches"][0].items()) {
-      if (value.is_string()) continue;
+    for (const auto& item : j["patches"][0].items()) {
+      if (item.value().is_string()) continue;
+      const std::string key = item.key();
       EXPECT_TRUE(std::any_of(table.patchLayout.root().children.begin(),
                               table.patchLayout.root().children.end(),
                               [&](const RecordField& f) { return f.name == key; }))
