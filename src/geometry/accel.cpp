@@ -8,6 +8,7 @@
 #include <string>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/float_round.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/bezier_intersect.h"
 
@@ -15,19 +16,6 @@ namespace quadtri {
 namespace {
 
 constexpr unsigned kInvalidId = RTC_INVALID_GEOMETRY_ID;
-
-// Nearest float not above x (not below x for roundUp): Embree traverses with floats, and the
-// float interval must contain the double one so that no hit is culled by rounding.
-float roundDown(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
-float roundUp(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
 
 // What the patch callbacks need: the patches and how much to grow their bounds. The double ray
 // differs from Embree's float copy by about 6e-8 of the distance travelled, so boxes grow by
@@ -101,12 +89,12 @@ void collectTriangleHit(const RTCFilterFunctionNArguments* args) {
 
 // Embree's float box holding b grown by `margin`.
 void writeBounds(const Bounds3& b, double margin, RTCBounds* o) {
-  o->lower_x = roundDown(b.lo.x() - margin);
-  o->lower_y = roundDown(b.lo.y() - margin);
-  o->lower_z = roundDown(b.lo.z() - margin);
-  o->upper_x = roundUp(b.hi.x() + margin);
-  o->upper_y = roundUp(b.hi.y() + margin);
-  o->upper_z = roundUp(b.hi.z() + margin);
+  o->lower_x = floatDown(b.lo.x() - margin);
+  o->lower_y = floatDown(b.lo.y() - margin);
+  o->lower_z = floatDown(b.lo.z() - margin);
+  o->upper_x = floatUp(b.hi.x() + margin);
+  o->upper_y = floatUp(b.hi.y() + margin);
+  o->upper_z = floatUp(b.hi.z() + margin);
 }
 
 void patchBounds(const RTCBoundsFunctionArguments* args) {
@@ -139,7 +127,7 @@ void intersectPatch(const RTCIntersectFunctionNArguments* args) {
   ctx->patchPrimitive = args->primID;
   ctx->patches = &patches;
   ctx->pieces = nullptr;
-  rayhit->ray.tfar = roundDown(t);
+  rayhit->ray.tfar = floatDown(t);
   rayhit->hit.geomID = args->geomID;
   rayhit->hit.primID = args->primID;
   rayhit->hit.instID[0] = args->context->instID[0];
@@ -224,7 +212,7 @@ void intersectBezier(const RTCIntersectFunctionNArguments* args) {
   ctx->pieces = &pieces;
   ctx->pieceU = h.u;
   ctx->pieceV = h.v;
-  rayhit->ray.tfar = roundDown(h.t);
+  rayhit->ray.tfar = floatDown(h.t);
   rayhit->hit.geomID = args->geomID;
   rayhit->hit.primID = primitive;  // the piece's index, also for a sub-patch
   rayhit->hit.instID[0] = args->context->instID[0];
@@ -258,8 +246,8 @@ void fillRay(const Ray& ray, RTCRay& out) {
   out.dir_x = float(ray.direction.x());
   out.dir_y = float(ray.direction.y());
   out.dir_z = float(ray.direction.z());
-  out.tnear = roundDown(std::max(ray.tnear, 0.0));
-  out.tfar = roundUp(ray.tfar);
+  out.tnear = floatDown(std::max(ray.tnear, 0.0));
+  out.tfar = floatUp(ray.tfar);
   out.time = 0.0f;
   out.mask = ~0u;
   out.id = 0;

@@ -1,0 +1,366 @@
+// The sub-patches that rendering traces (bezier_intersect.h: BezierSubPatch): their
+// construction, their fast path (prism, cone-certified Newton) and the search on a region.
+#include <tbb/blocked_range.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bezier_net.h"
+#include "quadtri/math/float_round.h"
+#include "quadtri/math/parallel.h"
+#include "quadtri/surface/bezier_intersect.h"
+
+namespace quadtri {
+
+using namespace bezier_detail;
+
+namespace {
+
+// Position and first derivatives of the piece's own (3D) net at (u, v).
+inline void evaluatePiece(const BezierTriangle& piece, double u, double v, P3& p, P3& du, P3& dv) {
+  const double w0 = 1.0 - u - v;
+  P3 a[10];
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j + k < 4; ++j) {
+      const Vec3& A = piece.b[size_t(netIndex(4, j, k))];
+      const Vec3& B = piece.b[size_t(netIndex(4, j + 1, k))];
+      const Vec3& C = piece.b[size_t(netIndex(4, j, k + 1))];
+      a[netIndex(3, j, k)] = {w0 * A.x() + u * B.x() + v * C.x(),
+                              w0 * A.y() + u * B.y() + v * C.y(),
+                              w0 * A.z() + u * B.z() + v * C.z()};
+    }
+  evaluateFromCubic(a, u, v, p, du, dv);
+}
+
+inline double dot(const P3& a, const P3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline P3 cross(const P3& a, const P3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Newton on b(u, v) = o + t·d in (u, v, t), in 3D on the piece's own net, from (u, v, t). On
+// success (u, v) is a root (the point b(u, v) within 1e-9 of the piece's scale of the line) and
+// t its ray parameter.
+bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& u, double& v,
+             double& t) {
+  const P3 nd{-d.x(), -d.y(), -d.z()};
+  P3 p, pu, pv;
+  for (int it = 0; it < 24; ++it) {
+    evaluatePiece(piece, u, v, p, pu, pv);
+    // Solve [pu pv −d]·(su, sv, st) = o + t·d − p by Cramer's rule.
+    const P3 f{o.x() + t * d.x() - p.x, o.y() + t * d.y() - p.y, o.z() + t * d.z() - p.z};
+    const P3 bc = cross(pv, nd), ca = cross(nd, pu), ab = cross(pu, pv);
+    const double det = dot(pu, bc);
+    if (!(std::abs(det) > 0.0)) return false;
+    const double su = dot(f, bc) / det, sv = dot(f, ca) / det, st = dot(f, ab) / det;
+    if (!std::isfinite(su) || !std::isfinite(sv) || !std::isfinite(st)) return false;
+    u += su;
+    v += sv;
+    t += st;
+    if (std::abs(u) > 4.0 || std::abs(v) > 4.0) return false;
+    if (std::max(std::abs(su), std::abs(sv)) < 1e-12) {
+      evaluatePiece(piece, u, v, p, pu, pv);
+      const P3 r{p.x - o.x(), p.y - o.y(), p.z - o.z()};
+      t = (r.x * d.x() + r.y * d.y() + r.z * d.z()) / d.squaredNorm();
+      // The residual against the scale of the piece's control points seen from o (an upper
+      // bound of intersectBezierTriangle's), so a tiny step at a singular Jacobian is no root.
+      const double scale = std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) +
+                           (piece.bounds.hi - piece.bounds.lo).maxCoeff();
+      const double residual = 1e-9 * scale;
+      return std::abs(r.x - t * d.x()) <= residual && std::abs(r.y - t * d.y()) <= residual &&
+             std::abs(r.z - t * d.z()) <= residual && std::isfinite(t);
+    }
+  }
+  return false;
+}
+
+enum class Solved { Hit, Candidate, None, Unknown };
+
+// Whether (u, v) lies in the closed region `levels` 4-splits down `path` (no slack).
+bool inRegion(int path, int levels, double u, double v) {
+  double cu[3] = {0, 1, 0}, cv[3] = {0, 0, 1};
+  for (int l = 0; l < levels; ++l) childCorners((path >> (2 * l)) & 3, cu, cv);
+  const double e1u = cu[1] - cu[0], e1v = cv[1] - cv[0], e2u = cu[2] - cu[0], e2v = cv[2] - cv[0];
+  const double ru = u - cu[0], rv = v - cv[0];
+  const double det = e1u * e2v - e1v * e2u;
+  const double a = (ru * e2v - rv * e2u) / det, b = (e1u * rv - e1v * ru) / det;
+  return a >= 0.0 && b >= 0.0 && a + b <= 1.0;
+}
+
+inline double dotf(const Vec3& a, const float* b) {
+  return a.x() * double(b[0]) + a.y() * double(b[1]) + a.z() * double(b[2]);
+}
+
+// The fast path of a sub-patch: the prism test, then Newton from where the ray crosses the
+// corner triangle's plane. Hit and None are final: the cone proves that the ray meets the region
+// at most once. Candidate is a root of the region in range, but where the ray may meet the region
+// twice; Unknown leaves the region to the subdivision search.
+Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
+                     const Vec3& d, double tmin, double tmax, BezierHit& hit) {
+  const Vec3 r = o - sub.p0;
+  const double ho = dotf(r, sub.n), hd = dotf(d, sub.n);
+  // Rounding of the projections from a far origin: far below this.
+  const double far = 1e-12 * r.cwiseAbs().maxCoeff();
+  double t0 = tmin, t1 = tmax;
+  if (hd != 0.0) {
+    double ta = (double(sub.hlo) - far - ho) / hd, tb = (double(sub.hhi) + far - ho) / hd;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (!(t0 <= t1)) return Solved::None;
+  } else if (ho < double(sub.hlo) - far || ho > double(sub.hhi) + far) {
+    return Solved::None;
+  }
+  // The corner triangle's barycentric coordinates 1 and 2 along the ray: a + t·b; the largest
+  // over [t0, t1] must reach each control point's least.
+  const double a1 = dotf(r, sub.g1), b1 = dotf(d, sub.g1);
+  const double a2 = dotf(r, sub.g2), b2 = dotf(d, sub.g2);
+  const double farL = far * double(sub.inverseSize);
+  auto reach = [&](double a, double b) { return b > 0.0 ? a + t1 * b : b < 0.0 ? a + t0 * b : a; };
+  if (reach(a1, b1) < double(sub.lmin[1]) - farL || reach(a2, b2) < double(sub.lmin[2]) - farL ||
+      reach(1.0 - a1 - a2, -b1 - b2) < double(sub.lmin[0]) - farL)
+    return Solved::None;
+  // At most one root in the region when every projected cross of derivative control vectors has
+  // the sign of d·axis (the injectivity test of slopes(), from the precomputed cone).
+  const double da = dotf(d, sub.axis), sinCone = double(sub.sinCone);
+  const bool injective = da * da > sinCone * sinCone * d.squaredNorm();
+  double t = -ho / hd;
+  if (!std::isfinite(t)) return Solved::Unknown;
+  double cu[3], cv[3];
+  sub.corners(cu, cv);
+  double l1 = std::max(a1 + t * b1, 0.0), l2 = std::max(a2 + t * b2, 0.0);
+  const double l0 = std::max(1.0 - (a1 + t * b1) - (a2 + t * b2), 0.0);
+  const double sum = l0 + l1 + l2;
+  l1 /= sum, l2 /= sum;
+  double u = cu[0] + l1 * (cu[1] - cu[0]) + l2 * (cu[2] - cu[0]);
+  double v = cv[0] + l1 * (cv[1] - cv[0]) + l2 * (cv[2] - cv[0]);
+  if (!newton3(piece, o, d, u, v, t)) return Solved::Unknown;
+  // The root in the region (its barycentric coordinates there) and in the piece's domain.
+  const double e1u = cu[1] - cu[0], e1v = cv[1] - cv[0], e2u = cu[2] - cu[0], e2v = cv[2] - cv[0];
+  const double ru = u - cu[0], rv = v - cv[0];
+  const double det = e1u * e2v - e1v * e2u;
+  const double ba = (ru * e2v - rv * e2u) / det, bb = (e1u * rv - e1v * ru) / det;
+  if (!(ba >= -kNodeSlack && bb >= -kNodeSlack && ba + bb <= 1.0 + kNodeSlack)) {
+    // A root outside the region: none in it when the parent holds that root and meets the ray
+    // at most once.
+    const double dp = dotf(d, sub.parentAxis), sinParent = double(sub.parentSinCone);
+    if (injective && dp * dp > sinParent * sinParent * d.squaredNorm() &&
+        inRegion(sub.path, sub.level - 1, u, v))
+      return Solved::None;
+    return Solved::Unknown;
+  }
+  if (!(u >= -kDomainSlack && v >= -kDomainSlack && u + v <= 1.0 + kDomainSlack))
+    return Solved::Unknown;
+  if (!(t > tmin && t < tmax)) return injective ? Solved::None : Solved::Unknown;
+  hit = {t, u, v};
+  return injective ? Solved::Hit : Solved::Candidate;
+}
+
+inline void storeFloat(const Vec3& v, float* out) {
+  for (int c = 0; c < 3; ++c) out[c] = float(v[c]);
+}
+
+// The sub-patch of `net` (the region's own net) with its box, prism and cone. Its directions are
+// rounded to float first, and its bounds computed with the rounded ones, then rounded outwards:
+// the prism holds the control points exactly for the directions it stores.
+BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int level, int path) {
+  BezierSubPatch s;
+  s.piece = piece;
+  s.level = uint8_t(level);
+  s.path = uint8_t(path);
+  Bounds3 box;
+  for (const Vec3& p : net.b) box.extend(p);
+  for (int c = 0; c < 3; ++c) s.lo[c] = floatDown(box.lo[c]), s.hi[c] = floatUp(box.hi[c]);
+  const Vec3& p0 = net.b[size_t(BezierTriangle::index(0, 0))];
+  const Vec3 e1 = net.b[size_t(BezierTriangle::index(4, 0))] - p0;
+  const Vec3 e2 = net.b[size_t(BezierTriangle::index(0, 4))] - p0;
+  const Vec3 normal = e1.cross(e2);
+  const double area2 = normal.squaredNorm();
+  const double size = std::max({e1.norm(), e2.norm(), (e2 - e1).norm()});
+  s.p0 = p0;
+  const float inf = std::numeric_limits<float>::infinity();
+  // A degenerate corner triangle: no prism (every ray passes) and no cone.
+  if (!(area2 > 1e-18 * size * size * size * size) || !std::isfinite(area2)) {
+    s.hlo = -inf, s.hhi = inf;
+    s.lmin[0] = s.lmin[1] = s.lmin[2] = -inf;
+    return s;
+  }
+  storeFloat(normal / std::sqrt(area2), s.n);
+  const double e11 = e1.dot(e1), e12 = e1.dot(e2), e22 = e2.dot(e2);
+  storeFloat((e22 * e1 - e12 * e2) / area2, s.g1);
+  storeFloat((e11 * e2 - e12 * e1) / area2, s.g2);
+  s.inverseSize = float(1.0 / size);
+  double hlo = kInfinity, hhi = -kInfinity, l0 = kInfinity, l1 = kInfinity, l2 = kInfinity;
+  for (const Vec3& b : net.b) {
+    const Vec3 r = b - p0;
+    const double h = dotf(r, s.n), a = dotf(r, s.g1), c = dotf(r, s.g2);
+    hlo = std::min(hlo, h), hhi = std::max(hhi, h);
+    l1 = std::min(l1, a), l2 = std::min(l2, c), l0 = std::min(l0, 1.0 - a - c);
+  }
+  // Grown far beyond the rounding of these projections and of the net.
+  s.hlo = floatDown(hlo - 1e-9 * size), s.hhi = floatUp(hhi + 1e-9 * size);
+  s.lmin[0] = floatDown(l0 - 1e-9), s.lmin[1] = floatDown(l1 - 1e-9);
+  s.lmin[2] = floatDown(l2 - 1e-9);
+  // The cone of the crosses of derivative control vectors: its axis the mean of their
+  // directions, its half-angle the largest angle to it.
+  Vec3 du[10], dv[10];
+  int at = 0;
+  for (int k = 0; k <= 3; ++k)
+    for (int j = 0; j + k <= 3; ++j, ++at) {
+      const Vec3& base = net.b[size_t(BezierTriangle::index(j, k))];
+      du[at] = net.b[size_t(BezierTriangle::index(j + 1, k))] - base;
+      dv[at] = net.b[size_t(BezierTriangle::index(j, k + 1))] - base;
+    }
+  Vec3 crosses[100];
+  Vec3 axis = Vec3::Zero();
+  for (int a = 0; a < 10; ++a)
+    for (int b = 0; b < 10; ++b) {
+      Vec3& c = crosses[10 * a + b];
+      c = du[a].cross(dv[b]);
+      const double len = c.norm();
+      if (!(len > 0.0)) return s;  // a vanishing cross: no cone
+      c /= len;
+      axis += c;
+    }
+  storeFloat(safeNormalized(axis, normal / std::sqrt(area2)), s.axis);
+  const Vec3 stored(s.axis[0], s.axis[1], s.axis[2]);
+  double cosMin = 1.0;
+  for (const Vec3& c : crosses) cosMin = std::min(cosMin, c.dot(stored) / stored.norm());
+  // The sine of the half-angle, grown far beyond the rounding of these products and of the axis.
+  if (cosMin > 0.0) s.sinCone = floatUp(std::sqrt(std::max(0.0, 1.0 - cosMin * cosMin)) + 1e-6);
+  return s;
+}
+
+}  // namespace
+
+void BezierSubPatch::corners(double* cu, double* cv) const {
+  cu[0] = 0, cv[0] = 0, cu[1] = 1, cv[1] = 0, cu[2] = 0, cv[2] = 1;
+  for (int l = 0; l < level; ++l) childCorners((path >> (2 * l)) & 3, cu, cv);
+}
+
+Bounds3 BezierSubPatch::bounds() const {
+  Bounds3 b;
+  b.lo = Vec3(lo[0], lo[1], lo[2]);
+  b.hi = Vec3(hi[0], hi[1], hi[2]);
+  return b;
+}
+
+std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
+                                             double coneDegrees, size_t budget) {
+  if (budget == 0) budget = std::max<size_t>(16384, 8 * pieces.size());
+  constexpr size_t kMaxRegions = size_t(1) << (2 * BezierSubPatch::kMaxLevel);
+  // Each piece's share of the budget, split among its regions on its own (in parallel, in a
+  // fixed slot each, so the result does not depend on the threads).
+  const size_t share =
+      std::clamp<size_t>(budget / std::max<size_t>(pieces.size(), 1), 1, kMaxRegions);
+  const double sinMax = std::sin(coneDegrees * kPi / 180.0);
+  std::vector<BezierSubPatch> slots(pieces.size() * share);
+  std::vector<uint8_t> counts(pieces.size(), 0);
+  parallelForRange(
+      tbb::blocked_range<size_t>(0, pieces.size(), 256),
+      [&](const tbb::blocked_range<size_t>& range) {
+        struct Item {
+          BezierTriangle net;
+          BezierSubPatch sub;
+        };
+        std::vector<Item> items;
+        std::vector<size_t> heap;
+        for (size_t p = range.begin(); p != range.end(); ++p) {
+          items.clear();
+          heap.clear();
+          items.push_back({pieces[p], makeSubPatch(pieces[p], uint32_t(p), 0, 0)});
+          // The widest cone first, while the share lasts.
+          auto splittable = [&](size_t i) {
+            return items[i].sub.level < BezierSubPatch::kMaxLevel && items[i].sub.sinCone > sinMax;
+          };
+          auto narrower = [&](size_t a, size_t b) {
+            const float ca = items[a].sub.sinCone, cb = items[b].sub.sinCone;
+            return ca < cb || (ca == cb && a > b);
+          };
+          if (splittable(0)) heap.push_back(0);
+          while (!heap.empty() && items.size() + 3 <= share) {
+            std::pop_heap(heap.begin(), heap.end(), narrower);
+            const size_t at = heap.back();
+            heap.pop_back();
+            const BezierSubPatch parent = items[at].sub;
+            const std::array<BezierTriangle, 4> children = subdivideBezierTriangle(items[at].net);
+            for (int m = 0; m < 4; ++m) {
+              const size_t slot = m == 0 ? at : items.size();
+              Item child{children[size_t(m)],
+                         makeSubPatch(children[size_t(m)], parent.piece, parent.level + 1,
+                                      parent.path | (m << (2 * parent.level)))};
+              std::copy(parent.axis, parent.axis + 3, child.sub.parentAxis);
+              child.sub.parentSinCone = parent.sinCone;
+              if (m == 0)
+                items[at] = child;
+              else
+                items.push_back(child);
+              if (splittable(slot)) {
+                heap.push_back(slot);
+                std::push_heap(heap.begin(), heap.end(), narrower);
+              }
+            }
+          }
+          for (size_t k = 0; k < items.size(); ++k) slots[p * share + k] = items[k].sub;
+          counts[p] = uint8_t(items.size());
+        }
+      });
+  std::vector<BezierSubPatch> out;
+  size_t total = 0;
+  for (uint8_t c : counts) total += c;
+  out.reserve(total);
+  for (size_t p = 0; p < pieces.size(); ++p)
+    out.insert(out.end(), slots.begin() + std::ptrdiff_t(p * share),
+               slots.begin() + std::ptrdiff_t(p * share + counts[p]));
+  return out;
+}
+
+bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
+                             const Vec3& d, double tmin, double tmax, BezierHit& hit) {
+  if (!(tmin < tmax)) return false;
+  BezierHit candidate;
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, candidate)) {
+    case Solved::Hit:
+      hit = candidate;
+      return true;
+    case Solved::None:
+      return false;
+    case Solved::Candidate:
+      tmax = candidate.t;  // the search is for a nearer root
+      break;
+    case Solved::Unknown:
+      break;
+  }
+  const Vec3 up(sub.axis[0], sub.axis[1], sub.axis[2]);
+  Found found;
+  traceBezier(piece, o, d, tmin, tmax, Mode::Nearest, found, &up, &sub);
+  if (found.any) {
+    hit = found.nearest;
+    return true;
+  }
+  if (candidate.t == kInfinity) return false;
+  hit = candidate;
+  return true;
+}
+
+bool occludesBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
+                            const Vec3& d, double tmin, double tmax) {
+  if (!(tmin < tmax)) return false;
+  BezierHit hit;
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, hit)) {
+    case Solved::Hit:
+    case Solved::Candidate:
+      return true;
+    case Solved::None:
+      return false;
+    case Solved::Unknown:
+      break;
+  }
+  const Vec3 up(sub.axis[0], sub.axis[1], sub.axis[2]);
+  Found found;
+  return traceBezier(piece, o, d, tmin, tmax, Mode::Any, found, &up, &sub) && found.any;
+}
+
+}  // namespace quadtri
