@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fixtures/bezier_pieces.h"
+#include "fixtures/sanitized.h"
 #include "quadtri/analysis/crack_rate.h"
 #include "quadtri/geometry/accel.h"
 #include "quadtri/geometry/model_geometry.h"
@@ -205,7 +206,7 @@ ModelGeometry bezierGeometry(const std::vector<BezierTriangle>& pieces) {
 
 TEST(CrackRate, ClosedSurfacesOfBezierPiecesAreWatertight) {
   CrackRateOptions options;
-  options.lines = 100000;
+  options.lines = fixtures::samples(100000);
   for (const double bulge : {0.0, 0.6})
     for (const bool split : {false, true}) {
       const std::vector<BezierTriangle> pieces = fixtures::octahedronPieces(bulge, split);

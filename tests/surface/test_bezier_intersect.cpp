@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "fixtures/bezier_pieces.h"
+#include "fixtures/sanitized.h"
 #include "quadtri/geometry/rng.h"
 #include "quadtri/surface/bezier_intersect.h"
 
@@ -294,7 +295,7 @@ TEST(BezierIntersect, DegeneratePiecesAreCheap) {
   std::vector<BezierHit> all;
   // The node budget bounds the work (an all-hits query on the segment visits up to 200,000
   // nodes); what is checked here is that what comes back lies on the ray and the piece.
-  for (int i = 0; i < 40; ++i) {
+  for (int i = 0; i < fixtures::samples(40); ++i) {
     const Vec3 d = uniformDirection(rng);
     for (const BezierTriangle* piece : std::array<const BezierTriangle*, 2>{&point, &segment}) {
       const Vec3 on = piece == &point ? point.b[0] : Vec3::Constant(rng.nextDouble());

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "fixtures/sanitized.h"
 #include "quadtri/analysis/crack_rate.h"
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/geometry/model_geometry.h"
@@ -72,7 +73,7 @@ TEST(Creases, WeldedModelsDoNotCrackOnTheCylinderAndTheCube) {
       EXPECT_TRUE(model->sharesEdges()) << name;
       EXPECT_LT(sharedEdgeGap(*model), 1e-15) << name << " " << spec;
       const ModelGeometry g = modelGeometry(*model, Tessellation{});
-      EXPECT_EQ(crackRate(g, lines(200000, 11)), 0.0) << name << " " << spec;
+      EXPECT_EQ(crackRate(g, lines(fixtures::samples(200000), 11)), 0.0) << name << " " << spec;
       if (g.triangles.triangleCount() > 0) {
         EXPECT_TRUE(MeshTopology(g.triangles).isClosed()) << name << " " << spec;
       }
@@ -90,7 +91,8 @@ TEST(Creases, AngleWeightedCreaseNormalsDoNotCrackEither) {
     for (const char* name : kWelded) {
       const auto model = makeModel(name, mesh);
       EXPECT_LT(sharedEdgeGap(*model), 1e-15) << name << " " << spec;
-      EXPECT_EQ(crackRate(modelGeometry(*model, Tessellation{}), lines(50000, 3)), 0.0)
+      EXPECT_EQ(
+          crackRate(modelGeometry(*model, Tessellation{}), lines(fixtures::samples(50000), 3)), 0.0)
           << name << " " << spec;
     }
   }
