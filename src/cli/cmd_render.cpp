@@ -3,10 +3,12 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 
 #include "commands.h"
 #include "normal_flags.h"
+#include "quadtri/io/memory_limit.h"
 #include "quadtri/io/stop_signals.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
@@ -108,7 +110,12 @@ Action addRenderCommand(CLI::App& app) {
     request.maxMemoryBytes = memoryLimit;
     request.warn = [](const std::string& message) { fmt::print(stderr, "warning: {}\n", message); };
     request.note = [](const std::string& message) { fmt::print(stderr, "{}\n", message); };
+    // Time to first pixel counts from here: the scene's loading, conversion and acceleration
+    // structure, then the render until its first pixel is finished.
+    const auto commandStart = std::chrono::steady_clock::now();
     PreparedRender prepared = prepareSceneRender(opt->scene, request);
+    const double buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - commandStart).count();
     const SceneDescription& description = prepared.description;
     const BuiltScene& built = prepared.built;
     RenderOptions& options = prepared.options;
@@ -202,6 +209,11 @@ Action addRenderCommand(CLI::App& app) {
                                                 result.image.pixels.size() - s.unfinishedPixels)
                                   : std::string());
     fmt::print("wall time       {:.3f} s\n", s.seconds);
+    fmt::print("scene build     {:.3f} s (loading, conversion, acceleration structure)\n",
+               buildSeconds);
+    if (s.finishedPixels > s.resumedPixels)
+      fmt::print("first pixel     {:.3f} s after the scene file was opened\n",
+                 buildSeconds + s.firstPixelSeconds);
     fmt::print("samples         {}\n", s.samples);
     fmt::print("rays traced     {}\n", s.rays);
     fmt::print("rays/s          {:.3g}\n", s.seconds > 0 ? double(s.rays) / s.seconds : 0.0);
@@ -209,6 +221,8 @@ Action addRenderCommand(CLI::App& app) {
                built.inputTriangles);
     fmt::print("geometry memory {:.2f} MiB\n",
                double(built.scene->geometryBytes()) / (1024.0 * 1024.0));
+    fmt::print("peak memory     {:.2f} MiB (resident)\n",
+               double(peakResidentBytes()) / (1024.0 * 1024.0));
     if (s.nonFiniteSamples)
       fmt::print(stderr, "warning: {} NaN/Inf samples dropped\n", s.nonFiniteSamples);
     if (const int sig = StopSignals::signalNumber()) {

@@ -1,5 +1,6 @@
 #include "quadtri/io/memory_limit.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -80,6 +81,12 @@ uint64_t parseByteSize(std::string_view text, std::string_view option) {
   if (!(bytes >= 1.0)) fail("{} {}: expected a positive size (at least 1 byte)", option, text);
   if (!(bytes <= 0x1p63)) fail("{} {}: expected a size under 2^63 bytes", option, text);
   return uint64_t(bytes);
+}
+
+uint64_t peakResidentBytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return uint64_t(usage.ru_maxrss) * 1024;  // Linux reports kibibytes
 }
 
 std::string formatBytes(uint64_t bytes) {

@@ -111,6 +111,7 @@ void bindRender(py::module_& m) {
         stats["height"] = image.height;
         stats["samples_per_pixel"] = s.meanSamplesPerPixel();
         stats["seconds"] = s.seconds;
+        stats["first_pixel_seconds"] = s.firstPixelSeconds;
         stats["samples"] = s.samples;
         stats["rays"] = s.rays;
         stats["finished_pixels"] = s.finishedPixels;
@@ -134,8 +135,9 @@ shape (--model); seed (--seed); threads (--threads, 0: all; the image does not d
 time: a budget in seconds (--time), pixels not started in time stay black. A define the file
 has no <default> for, dropped NaN samples and unrendered pixels give a UserWarning with the
 CLI's text. Ctrl-C stops the render and raises KeyboardInterrupt. With return_stats=True returns
-(image, stats), stats a dict of the CLI's summary: integrator, samples_per_pixel, seconds, samples,
-rays, primitives, input_triangles, geometry_bytes, ...
+(image, stats), stats a dict of the CLI's summary: integrator, samples_per_pixel, seconds,
+first_pixel_seconds (from the render's start), samples, rays, primitives, input_triangles,
+geometry_bytes, ...
 )doc");
 }
 

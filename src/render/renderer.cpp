@@ -174,6 +174,8 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
   std::atomic<uint64_t> samples{0}, rays{0};
   std::atomic<size_t> nonFinite{0}, finishedPixels{0}, unfinished{0}, resumed{0};
   std::atomic<bool> stopped{false};
+  std::atomic<bool> firstPixelSeen{false};
+  std::atomic<int64_t> firstPixelTicks{0};  // Clock ticks after `start`
   std::atomic<uint64_t> minSamples{std::numeric_limits<uint64_t>::max()}, maxSamples{0};
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration_cast<Clock::duration>(
@@ -265,6 +267,9 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
                   continue;
                 }
                 const PixelResult p = renderPixel(scene, integrator, options, x, y);
+                if (!firstPixelSeen.load(std::memory_order_relaxed) &&
+                    !firstPixelSeen.exchange(true))
+                  firstPixelTicks = (Clock::now() - start).count();
                 result.image.at(x, y) = p.value;
                 counts[index].store(uint32_t(p.samples), std::memory_order_release);
                 tileSamples += p.samples;
@@ -299,6 +304,8 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
   for (size_t i = 0; i < pixelCount; ++i) result.pixelSamples[i] = counts[i].load();
 
   result.stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.stats.firstPixelSeconds =
+      std::chrono::duration<double>(Clock::duration(firstPixelTicks.load())).count();
   result.stats.samples = samples.load();
   result.stats.rays = rays.load();
   result.stats.nonFiniteSamples = nonFinite.load();

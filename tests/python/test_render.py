@@ -56,6 +56,12 @@ def test_same_image_as_the_cli(cli, repo, tmp_path, model):
     assert stats["samples_per_pixel"] == 3.0
     assert (stats["width"], stats["height"]) == (24, 24)
     assert stats["rays"] > 0 and stats["unfinished_pixels"] == 0
+    assert 0 < stats["first_pixel_seconds"] <= stats["seconds"]
+    # The CLI's first pixel counts from the opening of the scene file: after the build.
+    build = float(re.search(r"scene build\s+([0-9.]+) s", out).group(1))
+    first = float(re.search(r"first pixel\s+([0-9.]+) s", out).group(1))
+    assert 0 <= build <= first
+    assert float(re.search(r"peak memory\s+([0-9.]+) MiB", out).group(1)) > 1.0
 
 
 def test_defines_take_numbers_and_bools(repo):

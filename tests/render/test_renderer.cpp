@@ -1,6 +1,9 @@
 // The tiled renderer: determinism, NaN handling, adaptive sampling and stopping early.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "quadtri/render/integrator/adaptive_integrator.h"
 #include "quadtri/render/integrator/path_integrator.h"
 #include "render_fixtures.h"
@@ -113,6 +116,44 @@ TEST(Renderer, CancelLeavesPixelsBlackAndCountsThem) {
   EXPECT_FALSE(full.stats.stopped);
   EXPECT_EQ(full.stats.minPixelSamples, 3u);
   EXPECT_EQ(full.stats.maxPixelSamples, 3u);
+}
+
+// An integrator whose every sample takes at least a millisecond.
+class SlowIntegrator final : public Integrator {
+ public:
+  Color radiance(const RenderScene&, const Ray&, Pcg32&, uint64_t&) const override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return Color::Ones();
+  }
+  std::string toString() const override { return "slow"; }
+};
+
+TEST(Renderer, FirstPixelTimeCountsRenderedPixelsOnly) {
+  RenderScene scene;
+  furnaceScene(scene, 8, 8);
+  RenderOptions options;
+  options.samplesPerPixel = 1;
+  options.threads = 1;
+  const SlowIntegrator slow;
+  const RenderResult r = render(scene, slow, options);
+  // One thread: the first pixel took a millisecond, and the 63 after it took one each.
+  EXPECT_GE(r.stats.firstPixelSeconds, 0.001);
+  EXPECT_GE(r.stats.seconds - r.stats.firstPixelSeconds, 0.063);
+  // Resumed pixels are not rendered: with every pixel resumed there is no first pixel.
+  RenderState state;
+  state.width = 8;
+  state.height = 8;
+  state.samples.assign(64, 1);
+  state.pixels.assign(64, Color::Ones());
+  options.resume = &state;
+  const RenderResult resumed = render(scene, slow, options);
+  EXPECT_EQ(resumed.stats.resumedPixels, 64u);
+  EXPECT_EQ(resumed.stats.firstPixelSeconds, 0.0);
+  // All but the last: the first rendered pixel is the last one, after no resumed pixel's cost.
+  state.samples.back() = 0;
+  const RenderResult one = render(scene, slow, options);
+  EXPECT_GE(one.stats.firstPixelSeconds, 0.001);
+  EXPECT_LE(one.stats.firstPixelSeconds, one.stats.seconds);
 }
 
 TEST(Renderer, ImageBytesCountTheFilmAndItsOutputCopies) {

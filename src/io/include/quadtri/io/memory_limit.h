@@ -13,6 +13,9 @@ namespace quadtri {
 /// limit (a container or a batch scheduler's job).
 uint64_t physicalMemoryBytes();
 
+/// The peak resident set of this process so far (getrusage's ru_maxrss), in bytes.
+uint64_t peakResidentBytes();
+
 /// The share of physicalMemoryBytes() a command may use unless told otherwise.
 constexpr double kDefaultMemoryShare = 0.5;
 

@@ -37,6 +37,9 @@ struct RenderOptions {
 
 struct RenderStats {
   double seconds = 0.0;
+  /// Seconds from the start of the render until its first pixel was finished (resumed pixels
+  /// do not count); 0 when it rendered none.
+  double firstPixelSeconds = 0.0;
   uint64_t samples = 0;
   uint64_t rays = 0;
   size_t finishedPixels = 0;

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Time to first pixel and peak resident memory of `quadtri render` on a large mesh, per model,
+# beside `shading`'s: a 1,000,000-triangle torus (`quadtri mesh torus --segments 1000 --rings
+# 500`) under a constant sky and a point light, 32x32 pixels at 1 sample per pixel, so the
+# render is dominated by what comes before it: loading, conversion and the acceleration
+# structure. Each model runs in its own process, one after the other; the times are the
+# command's own summary lines (`scene build`, `first pixel`, `peak memory`).
+#
+# Usage: scripts/measure-first-pixel.sh [MODELS] [SEGMENTS RINGS]
+#   MODELS    comma-separated (default: every model of `quadtri convert --help`)
+#   SEGMENTS RINGS   the torus' divisions (default 1000 500: 2·S·R = 1,000,000 triangles)
+# Environment: QUADTRI (default build/src/cli/quadtri), THREADS (default: all cores).
+# Prints a Markdown table; the ratios are each model's figure over shading's.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+quadtri=${QUADTRI:-build/src/cli/quadtri}
+[ -x "$quadtri" ] || { echo "$quadtri is not built (cmake --build build --target quadtri)" >&2; exit 1; }
+models=${1:-}
+segments=${2:-1000}
+rings=${3:-500}
+threads=${THREADS:-0}
+if [ -z "$models" ]; then
+  models=$("$quadtri" convert --help | sed -n 's/.*--model TEXT:{\([^}]*\)}.*/\1/p')
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$quadtri" mesh torus --segments "$segments" --rings "$rings" -o "$work/torus.ply" >/dev/null
+cat >"$work/scene.xml" <<XML
+<scene version="3.0.0">
+  <default name="model" value="shading"/>
+  <integrator type="path"><integer name="max_depth" value="4"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 2.2, 2.2" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/></film>
+    <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
+  </sensor>
+  <shape type="ply">
+    <string name="filename" value="torus.ply"/>
+    <string name="model" value="\$model"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.8, 0.8"/></bsdf>
+  </shape>
+  <emitter type="constant"><rgb name="radiance" value="0.4, 0.45, 0.5"/></emitter>
+  <emitter type="point"><point name="position" value="2, 3, 3"/><rgb name="intensity" value="12, 12, 12"/></emitter>
+</scene>
+XML
+triangles=$((2 * segments * rings))
+echo "Time to first pixel and peak memory, $triangles-triangle torus, 32x32 at 1 spp ($(nproc) cores, threads=$threads)"
+echo
+echo "| model | scene build (s) | first pixel (s) | ÷ shading | peak memory (MiB) | ÷ shading |"
+echo "|---|---:|---:|---:|---:|---:|"
+base_first=""
+base_peak=""
+for model in shading ${models//,/ }; do
+  if [ "$model" = shading ] && [ -n "$base_first" ]; then continue; fi
+  out=$("$quadtri" render "$work/scene.xml" --model "$model" --threads "$threads" -o "$work/$model.exr" 2>&1) || {
+    echo "| $model | failed: $(echo "$out" | tail -1) | | | | |"
+    continue
+  }
+  build=$(echo "$out" | sed -n 's/^scene build *\([0-9.]*\) s.*/\1/p')
+  first=$(echo "$out" | sed -n 's/^first pixel *\([0-9.]*\) s.*/\1/p')
+  peak=$(echo "$out" | sed -n 's/^peak memory *\([0-9.]*\) MiB.*/\1/p')
+  if [ -z "$base_first" ]; then
+    base_first=$first
+    base_peak=$peak
+  fi
+  ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+  echo "| $model | $build | $first | $(ratio "$first" "$base_first") | $peak | $(ratio "$peak" "$base_peak") |"
+done
