@@ -2,6 +2,7 @@
 
 #include <fmt/ranges.h>
 
+#include "model_cost.h"
 #include "quadtri/math/error.h"
 #include "quadtri/surface/bezier_triangle.h"
 #include "quadtri/surface/edges_model.h"
@@ -39,10 +40,12 @@ namespace {
 
 using ModelFactory = std::unique_ptr<SurfaceModel> (*)(std::shared_ptr<const TriangleMesh>);
 
-/// One model: its name (as `--model` takes it) and how to convert a mesh with it.
+/// One model: its name (as `--model` takes it), how to convert a mesh with it, and what that
+/// costs in memory (model_cost.h).
 struct ModelEntry {
   std::string_view name;
   ModelFactory make;
+  ModelCost cost;
 };
 
 template <typename M, auto... Args>
@@ -51,20 +54,24 @@ std::unique_ptr<SurfaceModel> make(std::shared_ptr<const TriangleMesh> mesh) {
 }
 
 /// The models, in the order `--model all` lists them. Adding a model is its own files and one
-/// line here; the CLI, the JSON, the CSV, the study and Python take their names from it.
+/// line here; the CLI, the JSON, the CSV, the study and Python take their names from it, and the
+/// memory checks its cost: {input triangles, traced, json, lattice mesh} (model_cost.h).
 constexpr ModelEntry kModels[] = {
-    {"flat", make<FlatModel, FlatModel::Normals::Geometric>},
-    {"shading", make<FlatModel, FlatModel::Normals::Interpolated>},
-    {"shading-offset", make<FlatModel, FlatModel::Normals::InterpolatedOffset>},
-    {"quadric-edges", make<EdgesModel, EdgesModel::Blend::Transfinite>},
-    {"quadric-param", make<ParamModel>},
-    {"quadric-implicit", make<ImplicitModel>},
-    {"quadric-edges-eq42", make<EdgesModel, EdgesModel::Blend::ThesisEq42>},
-    {"quadric-implicit-robust", make<RobustImplicitModel>},
-    {"phong", make<PhongModel>},
-    {"pn", make<PnModel>},
-    {"nagata", make<NagataModel>},
-    {"quadric-g1", make<G1Model>},
+    {"flat", make<FlatModel, FlatModel::Normals::Geometric>, {true, 100, 800, 0}},
+    {"shading", make<FlatModel, FlatModel::Normals::Interpolated>, {true, 100, 800, 0}},
+    {"shading-offset",
+     make<FlatModel, FlatModel::Normals::InterpolatedOffset>,
+     {true, 100, 800, 0}},
+    {"quadric-edges", make<EdgesModel, EdgesModel::Blend::Transfinite>, {false, 0, 4500, 290}},
+    {"quadric-param", make<ParamModel>, {false, 0, 4200, 290}},
+    {"quadric-implicit", make<ImplicitModel>, {false, 700, 7800, 290}},
+    // Not welded: a vertex per patch corner.
+    {"quadric-edges-eq42", make<EdgesModel, EdgesModel::Blend::ThesisEq42>, {false, 0, 4500, 350}},
+    {"quadric-implicit-robust", make<RobustImplicitModel>, {false, 6200, 9800, 310}},
+    {"phong", make<PhongModel>, {false, 0, 1900, 290}},
+    {"pn", make<PnModel>, {false, 0, 6100, 290}},
+    {"nagata", make<NagataModel>, {false, 0, 2500, 290}},
+    {"quadric-g1", make<G1Model>, {false, 5400, 1700, 80}},
 };
 
 }  // namespace
@@ -76,6 +83,12 @@ const std::vector<std::string>& modelNames() {
     return out;
   }();
   return names;
+}
+
+const ModelCost* modelCost(std::string_view name) {
+  for (const ModelEntry& m : kModels)
+    if (m.name == name) return &m.cost;
+  return nullptr;
 }
 
 std::unique_ptr<SurfaceModel> makeModel(std::string_view name,

@@ -6,6 +6,7 @@
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/model_memory.h"
 #include "quadtri/surface/nagata_model.h"
 #include "quadtri/surface/phong_model.h"
 #include "quadtri/surface/pn_model.h"
@@ -410,6 +411,35 @@ TEST(Alternatives, IcosahedronRadialDeviation) {
   // Closest to the sphere: Nagata, then Phong, then PN.
   EXPECT_LT(deviation[2], deviation[0]);
   EXPECT_LT(deviation[0], deviation[1]);
+}
+
+}  // namespace
+}  // namespace quadtri
+
+namespace quadtri {
+namespace {
+
+// Every model has its own memory cost beside its factory: a model traced as it is (input
+// triangles, quadric patches, Bézier pieces) costs the same to render at any tessellation
+// level, a tessellated one grows with it, and an unknown name costs the dearest model's.
+TEST(ModelMemory, EveryModelHasItsOwnCost) {
+  const Tessellation coarse{Tessellation::Kind::Lattice, 2}, fine{Tessellation::Kind::Lattice, 16};
+  uint64_t dearest = 0;
+  for (const std::string& name : modelNames()) {
+    SCOPED_TRACE(name);
+    const Representation r = makeModel(name, builtin("icosahedron"))->representation();
+    const uint64_t a = modelBytesPerTriangle(name, coarse, ModelUse::Render);
+    const uint64_t b = modelBytesPerTriangle(name, fine, ModelUse::Render);
+    EXPECT_GT(a, 0u);
+    if (r == Representation::Tessellated) {
+      EXPECT_EQ(b, 64 * a);  // 256 lattice triangles against 4
+    } else {
+      EXPECT_EQ(a, b);
+    }
+    EXPECT_GT(modelBytesPerTriangle(name, fine, ModelUse::ConvertJson), 0u);
+    dearest = std::max(dearest, b);
+  }
+  EXPECT_EQ(modelBytesPerTriangle("no-such-model", fine, ModelUse::Render), dearest);
 }
 
 }  // namespace

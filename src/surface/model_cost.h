@@ -1,0 +1,24 @@
+// Private to the surface layer: what a model costs in memory per input triangle, kept with the
+// model's name and factory in model.cpp's table and read by model_memory.cpp.
+#pragma once
+
+#include <string_view>
+
+namespace quadtri {
+
+/// Peak resident bytes per input triangle beyond loading the mesh, measured with
+/// `/usr/bin/time -f %M` as the slope between two sizes of one shape (icospheres of 20,480 and
+/// 81,920 triangles for `convert --model M -o x.obj`, `-o x.json` and `analyze --model M`; for
+/// the directly traced quadric-implicit-robust and quadric-g1, `render` on tori of 40,960 and
+/// 81,920 triangles, scripts/measure-first-pixel.sh).
+struct ModelCost {
+  bool inputTriangles = false;  ///< traced and written as the input triangles (no tessellation)
+  double traced = 0;            ///< Render, when not tessellated: the patches and their geometry
+  double json = 0;              ///< ConvertJson: one patch as a JSON object and its text
+  double latticeMesh = 0;       ///< ConvertMesh: per lattice triangle of the tessellated surface
+};
+
+/// The cost of the model named `name`; nullptr for a name that is no model.
+const ModelCost* modelCost(std::string_view name);
+
+}  // namespace quadtri
