@@ -28,6 +28,18 @@ assert abs(z - want) < 1e-6, f"hit z {z}, expected {want} (the unit sphere)"
 assert max(abs(nx - 0.1), abs(ny - 0.05), abs(nz - want)) < 1e-5, f"normal ({nx},{ny},{nz})"
 print(f"install: consumer built against the installed package; hit the sphere at z = {want:.9f}")
 PY
+# The installed command renders: it finds its image module (the only part that links
+# OpenImageIO) in the prefix's lib/quadtri/, with no build tree to fall back on.
+"$work/prefix/bin/quadtri" render scenes/default.xml --spp 1 --crop 0,0,16,12 --threads 2 \
+  -o "$work/crop.exr" >/dev/null
+test -s "$work/crop.exr"
+# merge reads the tile back through the module and refuses it: one window is not the film.
+if "$work/prefix/bin/quadtri" merge "$work/crop.exr" -o "$work/merged.exr" 2>"$work/merge.err"; then
+  echo "install: merge took one 16x12 window for the whole film" >&2
+  exit 1
+fi
+grep -q "do not cover" "$work/merge.err" || { cat "$work/merge.err" >&2; exit 1; }
+echo "install: the installed quadtri rendered a window of the default scene to EXR"
 # The Python module, when built: imported from the prefix, the same ray cast from Python.
 if [ -d "$work/prefix/lib/python3/dist-packages/quadtri" ]; then
   py=$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")

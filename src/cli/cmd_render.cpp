@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "normal_flags.h"
+#include "quadtri/io/image_module.h"
 #include "quadtri/io/memory_limit.h"
 #include "quadtri/io/stop_signals.h"
 #include "quadtri/math/error.h"
@@ -93,6 +94,9 @@ Action addRenderCommand(CLI::App& app) {
               "output {}: {} renders a window of the film, written as .exr only (its data "
               "window places it on the film); merge the tiles with `quadtri merge`",
               out, crop ? "--crop" : "--tile");
+    // The image module now, so that a missing one stops the command before the render rather
+    // than after it.
+    if (!opt->outputs.empty()) imageModule();
     if (checkpointGiven && !(opt->checkpoint > 0.0))
       fail("--checkpoint {}: expected a positive number of seconds", opt->checkpoint);
     const uint64_t memoryLimit = maxMemory();

@@ -1,27 +1,27 @@
 #include "quadtri/io/canvas.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include "quadtri/io/atomic_file.h"
+#include "quadtri/io/image_module.h"
 #include "quadtri/math/error.h"
 
 namespace quadtri {
 
+// Interleaved RGB floats, row by row from the top.
 struct Canvas::Impl {
-  OIIO::ImageBuf buf;
+  std::vector<float> rgb;
 };
 
 Canvas::Canvas(int width, int height, const Rgb& background)
-    : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
-  impl_->buf.reset(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::fill(impl_->buf, background);
+    : impl_(std::make_unique<Impl>()), width_(std::max(0, width)), height_(std::max(0, height)) {
+  impl_->rgb.resize(size_t(width_) * size_t(height_) * 3);
+  fillRect(0, 0, width_, height_, background);
 }
 
 Canvas::~Canvas() = default;
@@ -30,19 +30,20 @@ Canvas& Canvas::operator=(Canvas&&) noexcept = default;
 
 void Canvas::set(int x, int y, const Rgb& c) {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return;
-  impl_->buf.setpixel(x, y, c.data(), 3);
+  std::copy(c.begin(), c.end(), impl_->rgb.begin() + 3 * (ptrdiff_t(y) * width_ + x));
 }
 
 Rgb Canvas::get(int x, int y) const {
   Rgb c{0, 0, 0};
-  impl_->buf.getpixel(x, y, c.data(), 3);
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return c;
+  const float* p = impl_->rgb.data() + 3 * (ptrdiff_t(y) * width_ + x);
+  std::copy(p, p + 3, c.begin());
   return c;
 }
 
 void Canvas::fillRect(int x0, int y0, int x1, int y1, const Rgb& c) {
-  OIIO::ImageBufAlgo::fill(impl_->buf, c,
-                           OIIO::ROI(std::max(0, x0), std::min(width_, x1), std::max(0, y0),
-                                     std::min(height_, y1), 0, 1, 0, 3));
+  for (int y = std::max(0, y0); y < std::min(height_, y1); ++y)
+    for (int x = std::max(0, x0); x < std::min(width_, x1); ++x) set(x, y, c);
 }
 
 const std::string& labelFontPath() {
@@ -67,24 +68,33 @@ const std::string& labelFontPath() {
 }
 
 void Canvas::text(int x, int y, const std::string& s, int size, const Rgb& c, bool centered) {
-  const bool ok = OIIO::ImageBufAlgo::render_text(
-      impl_->buf, x, y, s, size, labelFontPath(), c,
-      centered ? OIIO::ImageBufAlgo::TextAlignX::Center : OIIO::ImageBufAlgo::TextAlignX::Left,
-      centered ? OIIO::ImageBufAlgo::TextAlignY::Center : OIIO::ImageBufAlgo::TextAlignY::Baseline);
-  if (!ok)
+  const std::string error = imageModule().drawText(impl_->rgb.data(), width_, height_, x, y, s,
+                                                   size, labelFontPath(), c.data(), centered);
+  if (!error.empty())
     fail("cannot draw text with the font {} ({}): install fonts-dejavu-core or set QUADTRI_FONT",
-         labelFontPath(), impl_->buf.geterror());
+         labelFontPath(), error);
 }
 
 void Canvas::paste(const Canvas& other, int x, int y) {
-  OIIO::ImageBufAlgo::paste(impl_->buf, x, y, 0, 0, other.impl_->buf);
+  for (int j = 0; j < other.height_; ++j)
+    for (int i = 0; i < other.width_; ++i) set(x + i, y + j, other.get(i, j));
 }
 
 void Canvas::savePng(const std::filesystem::path& path) const {
+  // Clamped to [0, 1] and rounded to 8 bits, as OpenImageIO converts floats.
+  std::vector<unsigned char> bytes(impl_->rgb.size());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    const float v = impl_->rgb[i];
+    bytes[i] = (unsigned char)(std::clamp(v == v ? v : 0.0f, 0.0f, 1.0f) * 255.0f + 0.5f);
+  }
+  ImageFileSpec spec;
+  spec.width = width_;
+  spec.height = height_;
+  spec.floatPixels = false;
+  const ImageModule& module = imageModule();
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    OIIO::ImageBuf out = OIIO::ImageBufAlgo::clamp(impl_->buf, 0.0f, 1.0f);
-    if (!out.write(tmp.string(), OIIO::TypeDesc::UINT8))
-      fail("{}: cannot write PNG ({})", path.string(), out.geterror());
+    if (const std::string error = module.write(tmp.string(), spec, bytes.data()); !error.empty())
+      fail("{}: cannot write PNG ({})", path.string(), error);
   });
 }
 

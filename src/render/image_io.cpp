@@ -1,11 +1,10 @@
 #include "quadtri/render/image_io.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "quadtri/io/atomic_file.h"
+#include "quadtri/io/image_module.h"
 #include "quadtri/math/error.h"
 
 namespace quadtri {
@@ -62,54 +61,48 @@ size_t writeImage(const Image& image, const std::filesystem::path& path, const I
       srgb[i] = (unsigned char)std::lround(255.0 * linearToSrgb(linear[i]));
   }
 
+  ImageFileSpec spec;
+  spec.width = image.width;
+  spec.height = image.height;
+  spec.floatPixels = exr;
+  if (exr) {
+    spec.compression = "zip";
+    spec.x = frame.x;
+    spec.y = frame.y;
+    spec.fullWidth = filmWidth;
+    spec.fullHeight = filmHeight;
+    spec.attributes = frame.attributes;
+  } else
+    spec.colorSpace = "sRGB";
+  const void* data =
+      exr ? static_cast<const void*>(linear.data()) : static_cast<const void*>(srgb.data());
+  const ImageModule& module = imageModule();
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    if (!out) fail("{}: cannot create an image writer: {}", path.string(), OIIO::geterror());
-    const OIIO::TypeDesc type = exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
-    OIIO::ImageSpec spec(image.width, image.height, 3, type);
-    if (exr) {
-      spec.attribute("compression", "zip");
-      spec.x = frame.x;
-      spec.y = frame.y;
-      spec.full_x = 0;
-      spec.full_y = 0;
-      spec.full_width = filmWidth;
-      spec.full_height = filmHeight;
-      for (const auto& [name, value] : frame.attributes) spec.attribute(name, value);
-    } else
-      spec.attribute("oiio:ColorSpace", "sRGB");
-    const void* data =
-        exr ? static_cast<const void*>(linear.data()) : static_cast<const void*>(srgb.data());
-    if (!out->open(tmp.string(), spec) || !out->write_image(type, data) || !out->close())
-      fail("{}: writing the image failed: {}", path.string(), out->geterror());
+    if (const std::string error = module.write(tmp.string(), spec, data); !error.empty())
+      fail("{}: writing the image failed: {}", path.string(), error);
   });
   return nonFinite;
 }
 
 Image readImage(const std::filesystem::path& path, ImageFrame* frame) {
   const std::string name = path.string();
-  auto in = OIIO::ImageInput::open(name);
-  if (!in) fail("{}: cannot read the image: {}", name, OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.nchannels != 3)
-    fail("{}: {} channels, expected the 3 (RGB) quadtri writes", name, spec.nchannels);
-  if (spec.full_x != 0 || spec.full_y != 0)
-    fail("{}: the display window starts at {},{}, expected 0,0", name, spec.full_x, spec.full_y);
-  std::vector<float> rgb(size_t(spec.width) * size_t(spec.height) * 3);
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data()))
-    fail("{}: reading the pixels failed: {}", name, in->geterror());
+  ImageFileSpec spec;
+  std::vector<float> rgb;
+  if (const std::string error = imageModule().read(name, spec, rgb); !error.empty())
+    fail("{}: cannot read the image: {}", name, error);
+  if (spec.channels != 3)
+    fail("{}: {} channels, expected the 3 (RGB) quadtri writes", name, spec.channels);
+  if (spec.fullX != 0 || spec.fullY != 0)
+    fail("{}: the display window starts at {},{}, expected 0,0", name, spec.fullX, spec.fullY);
   Image image(spec.width, spec.height);
   for (size_t i = 0; i < image.pixels.size(); ++i)
     image.pixels[i] = Color(double(rgb[3 * i]), double(rgb[3 * i + 1]), double(rgb[3 * i + 2]));
   if (frame) {
     frame->x = spec.x;
     frame->y = spec.y;
-    frame->filmWidth = spec.full_width;
-    frame->filmHeight = spec.full_height;
-    frame->attributes.clear();
-    for (const OIIO::ParamValue& p : spec.extra_attribs)
-      if (p.type() == OIIO::TypeDesc::STRING)
-        frame->attributes.emplace_back(p.name().string(), p.get_string());
+    frame->filmWidth = spec.fullWidth;
+    frame->filmHeight = spec.fullHeight;
+    frame->attributes = std::move(spec.attributes);
   }
   return image;
 }

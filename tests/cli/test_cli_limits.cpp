@@ -158,5 +158,41 @@ TEST(CliLimits, RenderRefusesAnImageOrMeshOverMaxMemory) {
   fs::remove_all(dir);
 }
 
+// Without its image module, render says where it looked and how to point at the module, exits
+// 1 and writes nothing; commands that write no image (convert) do not need it.
+TEST(CliLimits, RenderWithoutTheImageModuleSaysWhereItLookedAndWritesNothing) {
+  const fs::path dir = freshDir("image-module");
+  std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "scene.xml") << R"(<scene version="3.0.0">
+  <sensor type="perspective">
+    <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
+  </sensor>
+  <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>
+  <shape type="obj"><string name="filename" value="tri.obj"/></shape>
+</scene>
+)";
+  const fs::path missing = dir / "nowhere" / "libquadtri_image.so";
+  ::setenv("QUADTRI_IMAGE_MODULE", missing.c_str(), 1);
+  CliProcess render({"render", (dir / "scene.xml").string(), "-o", (dir / "out.png").string()}, dir,
+                    "render");
+  CliProcess convert({"convert", (dir / "tri.obj").string(), "--model", "quadric-param", "-o",
+                      (dir / "tri.ply").string()},
+                     dir, "convert");
+  ::unsetenv("QUADTRI_IMAGE_MODULE");
+  EXPECT_EQ(render.wait(), 1);
+  const std::string err = render.stderrText();
+  EXPECT_NE(err.find("cannot load quadtri's image module libquadtri_image.so"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find(missing.string() + ": no such file"), std::string::npos) << err;
+  EXPECT_NE(err.find("QUADTRI_IMAGE_MODULE"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "out.png"));
+  EXPECT_TRUE(temporaryFiles(dir).empty());
+  EXPECT_EQ(convert.wait(), 0) << convert.stderrText();
+  EXPECT_TRUE(fs::exists(dir / "tri.ply"));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace quadtri::test

@@ -1,11 +1,11 @@
 // `quadtri render --checkpoint` killed by SIGKILL between checkpoints and `--resume`d gives the
 // uninterrupted render's pixels exactly; a state from another render is refused.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "cli/cli_runner.h"
+#include "quadtri/io/image_module.h"
 
 namespace quadtri::test {
 namespace {
@@ -13,10 +13,9 @@ namespace {
 namespace fs = std::filesystem;
 
 std::vector<float> readPixels(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return {};
-  std::vector<float> rgb(size_t(in->spec().width) * size_t(in->spec().height) * 3);
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data())) return {};
+  ImageFileSpec spec;
+  std::vector<float> rgb;
+  if (!imageModule().read(path.string(), spec, rgb).empty() || spec.channels != 3) return {};
   return rgb;
 }
 

@@ -1,13 +1,13 @@
 // `quadtri render` under a scheduler: SIGTERM and SIGHUP stop it as SIGINT does (the pixels so
 // far are written, atomically, with a non-zero status and the samples per pixel on stderr); a
 // second signal ends it at once and leaves no temporary file.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <fstream>
 
 #include "cli/cli_runner.h"
+#include "quadtri/io/image_module.h"
 
 namespace quadtri::test {
 namespace {
@@ -39,15 +39,12 @@ struct ExrImage {
 };
 
 std::optional<ExrImage> readExr(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return std::nullopt;
+  ImageFileSpec spec;
   ExrImage image;
-  image.width = in->spec().width;
-  image.height = in->spec().height;
-  image.rgb.resize(size_t(image.width) * size_t(image.height) * 3);
-  if (in->spec().nchannels != 3 ||
-      !in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data()))
+  if (!imageModule().read(path.string(), spec, image.rgb).empty() || spec.channels != 3)
     return std::nullopt;
+  image.width = spec.width;
+  image.height = spec.height;
   return image;
 }
 

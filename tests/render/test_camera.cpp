@@ -1,9 +1,11 @@
 // The perspective camera's Mitsuba conventions, the reconstruction filters and image output.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 
+#include "quadtri/io/image_module.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/camera.h"
 #include "quadtri/render/filter.h"
@@ -114,6 +116,36 @@ TEST(ReconstructionFilter, TentOffsetsFollowTheTriangle) {
   EXPECT_DOUBLE_EQ(filter.radius(), 1.5);
 }
 
+// Whether a shared library whose file name contains `name` is mapped into this process.
+bool mapped(const std::string& name) {
+  std::ifstream maps("/proc/self/maps");
+  std::string line;
+  while (std::getline(maps, line))
+    if (line.find(name) != std::string::npos) return true;
+  return false;
+}
+
+// OpenImageIO arrives with the image module only: a program that links quadtri does not load
+// it (nor its ~270 libraries) until an image is written. Holds whatever ran before in this
+// process: before the write, OpenImageIO is mapped exactly when the module is.
+TEST(ImageIo, OpenImageIoIsLoadedOnlyWithTheImageModule) {
+  EXPECT_EQ(mapped("libOpenImageIO.so"), mapped("libquadtri_image.so"));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "quadtri_test_image_module";
+  std::filesystem::create_directories(dir);
+  Image image(2, 2);
+  image.at(1, 1) = Color(0.5, 0.25, 1.0);
+  EXPECT_EQ(writeImage(image, dir / "b.exr"), 0u);
+  EXPECT_TRUE(mapped("libquadtri_image.so"));
+  EXPECT_TRUE(mapped("libOpenImageIO.so"));
+  ImageFrame frame;
+  const Image back = readImage(dir / "b.exr", &frame);
+  ASSERT_EQ(back.pixels.size(), 4u);
+  EXPECT_TRUE((back.at(1, 1) == Color(0.5, 0.25, 1.0)).all());
+  EXPECT_EQ(frame.filmWidth, 2);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(ImageIo, SrgbTransferFunction) {
   EXPECT_EQ(linearToSrgb(0.0), 0.0);
   EXPECT_NEAR(linearToSrgb(1.0), 1.0, 1e-15);
@@ -134,24 +166,23 @@ TEST(ImageIo, WritesExrAndPngWithoutNonFiniteValues) {
   EXPECT_EQ(writeImage(image, dir / "a.exr"), 2u);
   EXPECT_EQ(writeImage(image, dir / "a.png"), 2u);
 
-  auto in = OIIO::ImageInput::open((dir / "a.exr").string());
-  ASSERT_TRUE(in);
-  std::vector<float> exr(18);
-  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, exr.data()));
-  in->close();
+  ImageFileSpec spec;
+  std::vector<float> exr;
+  ASSERT_EQ(imageModule().read((dir / "a.exr").string(), spec, exr), "");
+  ASSERT_EQ(exr.size(), 18u);
+  EXPECT_TRUE(spec.floatPixels);
   EXPECT_EQ(exr[0], 0.25f);
   EXPECT_EQ(exr[2], 2.0f);
   EXPECT_EQ(exr[3], 0.0f);  // NaN written as 0
   EXPECT_EQ(exr[5], 0.0f);  // −∞ written as 0
   EXPECT_FLOAT_EQ(exr[15], 0.18f);
 
-  in = OIIO::ImageInput::open((dir / "a.png").string());
-  ASSERT_TRUE(in);
-  std::vector<unsigned char> png(18);
-  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, png.data()));
-  in->close();
-  EXPECT_EQ(png[2], 255);   // 2.0 clamps
-  EXPECT_EQ(png[15], 118);  // 0.18 → sRGB 0.461 → 118
+  std::vector<float> png;
+  ASSERT_EQ(imageModule().read((dir / "a.png").string(), spec, png), "");
+  ASSERT_EQ(png.size(), 18u);
+  EXPECT_FALSE(spec.floatPixels);                 // 8-bit, read back as value / 255
+  EXPECT_EQ(std::lround(png[2] * 255.0f), 255);   // 2.0 clamps
+  EXPECT_EQ(std::lround(png[15] * 255.0f), 118);  // 0.18 → sRGB 0.461 → 118
   EXPECT_THROW(writeImage(image, dir / "a.jpg"), Error);
   EXPECT_FALSE(std::filesystem::exists(dir / "a.jpg"));
   std::filesystem::remove_all(dir);
