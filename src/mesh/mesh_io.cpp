@@ -101,12 +101,12 @@ std::vector<uint32_t> firstEqual(const std::vector<std::array<T, 3>>& points) {
   return first;
 }
 
-// One mesh as a reader gives it (Assimp's post-processed scene, or the native OBJ reader): its
-// vertices, their normals (when the file has them) and its triangles. A vertex's position is
-// row pointOf[v] of `points` (row v without pointOf), its normal row normalOf[v] of `normals`
-// likewise: the native reader's vertices are face corners (as Assimp's OBJ importer lays them
-// out), which index the file's v and vn lines. Without faces, vertices 3f, 3f+1 and 3f+2 make
-// triangle f.
+// One mesh as a reader gives it (Assimp's post-processed scene, or the native OBJ or OFF
+// reader): its vertices, their normals (when the file has them) and its triangles. A vertex's
+// position is row pointOf[v] of `points` (row v without pointOf), its normal row normalOf[v] of
+// `normals` likewise: the native readers' vertices are triangle corners (as Assimp's importers
+// lay them out), which index the file's v and vn lines (OFF: its vertex lines). Without faces,
+// vertices 3f, 3f+1 and 3f+2 make triangle f.
 struct Part {
   const aiVector3D* points = nullptr;
   size_t pointCount = 0;
@@ -250,7 +250,8 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
   return mesh;
 }
 
-// Reads the file's bytes with Assimp (its OBJ, PLY, STL and OFF importers).
+// Reads the file's bytes with Assimp (its OBJ, PLY and STL importers; OFF only when asked for,
+// MeshReader::Assimp).
 TriangleMesh loadWithAssimp(const std::string& name, const std::string& ext,
                             const std::string& bytes) {
   Assimp::Importer importer;
@@ -330,8 +331,9 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
         [&] { plain = mesh_check::readPlainObj(bytes); });
     plainTried = true;
   } else {
-    info = mesh_check::inspectMeshBytes(path, bytes);
-    digest = FileDigest::of(bytes);
+    // An OFF file's body is checked by the reader that reads it (readOffBody), below.
+    info = mesh_check::inspectMeshBytes(path, bytes, /*offBody=*/ext != ".off");
+    if (ext != ".off") digest = FileDigest::of(bytes);
   }
   // The OBJ pre-pass counts faces exactly; without this, Assimp's refusal ("all meshes are
   // orphaned") would not say what is wrong.
@@ -341,7 +343,22 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
   TriangleMesh mesh;
   // A plain OBJ file (mesh_check::readPlainObj) is read natively, the same as Assimp reads it.
   if (plainObj && !plainTried) plain = mesh_check::readPlainObj(bytes);
-  if (plain) {
+  if (ext == ".off" && reader == MeshReader::Auto) {
+    // OFF is read natively, never by Assimp (mesh_check::readOff); the digest is taken while it
+    // reads.
+    mesh_check::OffMesh off;
+    parallelInvoke([&] { digest = FileDigest::of(bytes); },
+                   [&] { off = mesh_check::readOff(name, bytes); });
+    Part part;
+    part.points = off.points.data();
+    part.pointCount = off.points.size();
+    part.pointOf = off.corners.data();
+    part.normals = off.normals.data();
+    part.normalCount = off.normals.size();
+    part.normalOf = off.corners.data();
+    part.vertexCount = off.corners.size();
+    mesh = weldParts(name, {part}, off.header.normals);
+  } else if (plain) {
     Part part;
     part.points = plain->points.data();
     part.pointCount = plain->points.size();
@@ -352,6 +369,15 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     part.vertexCount = plain->pointOf.size();
     mesh = weldParts(name, {part}, !plain->normalOf.empty());
   } else {
+    if (ext == ".off") {
+      // Assimp's OFF importer reads out of bounds on a face of no vertex (fuzz_off).
+      const mesh_check::OffBody body =
+          mesh_check::readOffBody(name, bytes, mesh_check::readOffHeader(name, bytes), nullptr);
+      if (body.firstEmptyFaceLine != 0)
+        fail("{}:{}: a face of no vertex, which Assimp's OFF importer cannot read", name,
+             body.firstEmptyFaceLine);
+      digest = FileDigest::of(bytes);
+    }
     mesh = loadWithAssimp(name, ext, bytes);
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
