@@ -85,7 +85,8 @@ struct OffBody {
 };
 
 /// An OFF file as read: positions (and NOFF's normals, one per position) rounded to floats
-/// from the correctly rounded doubles, and 3 corners per triangle, indices into `points`.
+/// from the correctly rounded doubles, and 3 corners per triangle, indices into `points` (their
+/// triangles are only kept when `points` is, OffMesh given to readOffBody).
 struct OffMesh {
   OffHeader header;
   OffBody body;
@@ -101,8 +102,10 @@ OffHeader readOffHeader(const std::string& name, std::string_view bytes);
 /// Reads the body after `header` line by line, as scripts/corpus-manifest.py does: blank lines
 /// and '#' comments (anywhere on a line) skipped, then one vertex per line (x y z, then nx ny
 /// nz for NOFF; anything after is not read), then one face per line "k i1 .. ik" (anything
-/// after, a colour, is not read). A face of k ≥ 3 corners is fanned from its first corner into
-/// k - 2 triangles; one of fewer corners is dropped. Lines after the last face are not read.
+/// after, a colour, is not read). A face of k ≥ 3 corners becomes k - 2 triangles on its
+/// corners, as the manifest counts them: fanned from its first corner when it is convex in the
+/// plane of its Newell normal, else cut into ears in that plane (up to 64 corners; a larger one
+/// is fanned); one of fewer corners is dropped. Lines after the last face are not read.
 /// Throws Error naming the file, the line and what was expected: a coordinate that is not a
 /// number or not finite as a float, a missing value or index, an index that is no vertex, a
 /// file that ends early. With `out` null only checks (nothing is allocated per element).

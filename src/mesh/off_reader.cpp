@@ -3,6 +3,7 @@
 // meshes of the corpus as open and read past its buffers on short lines; this reader reads an
 // OFF file as scripts/corpus-manifest.py does, and names the line of anything it cannot read.
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -134,6 +135,87 @@ bool equalsIgnoringCase(std::string_view a, std::string_view b) {
   return true;
 }
 
+// Polygons of more corners than this are fanned whatever their shape: ear clipping takes up to
+// k^3 steps on a polygon of k corners.
+constexpr size_t kMaxEarClipCorners = 64;
+
+// Appends the k - 2 triangles of a polygon (indices into `points`, k ≥ 3) to `corners`. A
+// polygon that is convex in the plane of its Newell normal (every triangle then faces that
+// normal) is fanned from its first corner; one that is not (its fan would fold over itself) is
+// cut into ears in that plane, which keeps every triangle inside it. The triangles use only the
+// polygon's corners and keep its winding, so its edges are the ones its fan would give.
+void triangulate(const std::vector<uint32_t>& polygon, const std::vector<aiVector3D>& points,
+                 std::vector<uint32_t>& corners) {
+  const size_t k = polygon.size();
+  const auto fan = [&](size_t first) {
+    for (size_t j = first + 1; j + 1 < k; ++j)
+      corners.insert(corners.end(), {polygon[0], polygon[j], polygon[j + 1]});
+  };
+  if (k == 3 || k > kMaxEarClipCorners) return fan(0);
+  // Newell's normal, then the polygon in the plane of its largest component, wound
+  // counter-clockwise.
+  double n[3] = {0, 0, 0};
+  for (size_t i = 0; i < k; ++i) {
+    const aiVector3D& a = points[polygon[i]];
+    const aiVector3D& b = points[polygon[(i + 1) % k]];
+    n[0] += (double(a.y) - b.y) * (double(a.z) + b.z);
+    n[1] += (double(a.z) - b.z) * (double(a.x) + b.x);
+    n[2] += (double(a.x) - b.x) * (double(a.y) + b.y);
+  }
+  const int axis = std::abs(n[0]) >= std::abs(n[1]) && std::abs(n[0]) >= std::abs(n[2]) ? 0
+                   : std::abs(n[1]) >= std::abs(n[2])                                   ? 1
+                                                                                        : 2;
+  if (!(std::abs(n[axis]) > 0)) return fan(0);  // no area: nothing to keep inside
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const double flip = n[axis] > 0 ? 1.0 : -1.0;
+  std::array<std::array<double, 2>, kMaxEarClipCorners> p;
+  for (size_t i = 0; i < k; ++i) {
+    const aiVector3D& q = points[polygon[i]];
+    const float c[3] = {q.x, q.y, q.z};
+    p[i] = {flip * double(c[u]), double(c[w])};
+  }
+  const auto cross = [&](size_t a, size_t b, size_t c) {
+    return (p[b][0] - p[a][0]) * (p[c][1] - p[a][1]) - (p[b][1] - p[a][1]) * (p[c][0] - p[a][0]);
+  };
+  bool convex = true;
+  for (size_t i = 0; i < k && convex; ++i) convex = cross((i + k - 1) % k, i, (i + 1) % k) >= 0;
+  if (convex) return fan(0);
+  // Ear clipping: corner i is an ear when it turns left and no other corner left lies in its
+  // triangle (corners at the same point as one of its three excepted).
+  std::array<size_t, kMaxEarClipCorners> prev, next;
+  for (size_t i = 0; i < k; ++i) {
+    prev[i] = (i + k - 1) % k;
+    next[i] = (i + 1) % k;
+  }
+  const auto same = [&](size_t a, size_t b) { return p[a] == p[b]; };
+  const auto isEar = [&](size_t i) {
+    const size_t a = prev[i], c = next[i];
+    if (!(cross(a, i, c) > 0)) return false;
+    for (size_t j = next[c]; j != a; j = next[j]) {
+      if (same(j, a) || same(j, i) || same(j, c)) continue;
+      if (cross(a, i, j) >= 0 && cross(i, c, j) >= 0 && cross(c, a, j) >= 0) return false;
+    }
+    return true;
+  };
+  size_t left = k, i = 0, tried = 0;
+  while (left > 3) {
+    if (!isEar(i)) {
+      i = next[i];
+      if (++tried < left) continue;
+      // No ear (the polygon crosses itself in this plane): the rest is fanned from corner i.
+      for (size_t j = next[i]; next[j] != i; j = next[j])
+        corners.insert(corners.end(), {polygon[i], polygon[j], polygon[next[j]]});
+      return;
+    }
+    corners.insert(corners.end(), {polygon[prev[i]], polygon[i], polygon[next[i]]});
+    next[prev[i]] = next[i];
+    prev[next[i]] = prev[i];
+    i = prev[i];
+    --left;
+    tried = 0;
+  }
+  corners.insert(corners.end(), {polygon[prev[i]], polygon[i], polygon[next[i]]});
+}
 }  // namespace
 
 OffHeader readOffHeader(const std::string& name, std::string_view bytes) {
@@ -265,11 +347,8 @@ OffBody readOffBody(const std::string& name, std::string_view bytes, const OffHe
       ++body.droppedFaces;
       if (k == 0 && body.firstEmptyFaceLine == 0) body.firstEmptyFaceLine = lineNo;
     } else {
-      // A fan from the first corner: k - 2 triangles.
       body.triangles += k - 2;
-      if (out)
-        for (size_t j = 1; j + 1 < polygon.size(); ++j)
-          out->corners.insert(out->corners.end(), {polygon[0], polygon[j], polygon[j + 1]});
+      if (out) triangulate(polygon, out->points, out->corners);
     }
     ++f;
   }

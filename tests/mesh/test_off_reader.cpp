@@ -89,8 +89,8 @@ TEST_F(OffReader, ReadsCountsCoordinatesAndComments) {
   EXPECT_FALSE(m.repairs.any()) << m.repairs.summary();
 }
 
-// A polygon of k corners is k - 2 triangles fanned from its first corner; faces of 0, 1 or 2
-// corners (points and lines) are dropped, as scripts/corpus-manifest.py counts them.
+// A convex polygon of k corners is k - 2 triangles fanned from its first corner; faces of 0, 1
+// or 2 corners (points and lines) are dropped, as scripts/corpus-manifest.py counts them.
 TEST_F(OffReader, FansPolygonsAndDropsPointsAndLines) {
   const fs::path path = write("fan.off",
                               "OFF\n6 5 0\n"
@@ -102,6 +102,23 @@ TEST_F(OffReader, FansPolygonsAndDropsPointsAndLines) {
   EXPECT_EQ(m.positions[3], Vec3(2, 2, 0));
   EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}));
   EXPECT_FALSE(m.repairs.any()) << m.repairs.summary();
+}
+
+// A polygon that is not convex is cut into ears in its plane: still k - 2 triangles on its own
+// corners, but none folds over (its fan from corner 0 would hold the clockwise (0, 2, 3)).
+TEST_F(OffReader, CutsNonConvexPolygonsIntoEars) {
+  const fs::path path = write("arrow.off", "OFF\n4 1 0\n0 0 0\n2 1 0\n0 2 0\n0.5 1 0\n4 0 1 2 3\n");
+  const TriangleMesh m = loadMesh(path);
+  ASSERT_EQ(m.positions.size(), 4u);
+  // Numbered by first use: the ears (3, 0, 1) and (2, 3, 1).
+  EXPECT_EQ(m.positions[0], Vec3(0.5, 1, 0));
+  EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}, {3, 0, 2}}));
+  double area = 0;
+  for (size_t t = 0; t < m.triangleCount(); ++t) {
+    EXPECT_EQ(m.faceNormal(t), Vec3(0, 0, 1)) << t;
+    area += m.faceCross(t).norm() / 2;
+  }
+  EXPECT_EQ(area, 1.5);  // the arrow's area; the fan's triangles would sum to 2.5
 }
 
 // COFF: a colour after each vertex (integers or floats, 3 or 4 of them) and after each face
