@@ -73,8 +73,9 @@ struct OffHeader {
   std::string keyword;  ///< "OFF", "COFF", "NOFF", ...; "" when the file starts with its counts
   bool texcoords = false, colours = false, normals = false;  ///< ST, C and N
   uint64_t vertices = 0, faces = 0;
-  size_t bodyOffset = 0;  ///< the first byte of the line after the counts
-  uint64_t bodyLine = 0;  ///< its line number, from 1
+  uint64_t countsLine = 0;  ///< the line of the face count
+  size_t bodyOffset = 0;    ///< the first byte of the line after the counts
+  uint64_t bodyLine = 0;    ///< its line number, from 1
 };
 
 /// What the body held beyond its vertices.
@@ -95,8 +96,8 @@ struct OffMesh {
 };
 
 /// Reads an OFF header; throws Error naming the file and the line when it is not one: not the
-/// keyword or counts, binary OFF, 4OFF or nOFF (homogeneous or n-dimensional vertices), counts
-/// over 2^32 - 1. Nothing is allocated per element.
+/// keyword or counts, binary OFF, 4OFF or nOFF (homogeneous or n-dimensional vertices). Nothing
+/// is allocated per element.
 OffHeader readOffHeader(const std::string& name, std::string_view bytes);
 
 /// Reads the body after `header` line by line, as scripts/corpus-manifest.py does: blank lines
@@ -106,7 +107,8 @@ OffHeader readOffHeader(const std::string& name, std::string_view bytes);
 /// corners, as the manifest counts them: fanned from its first corner when it is convex in the
 /// plane of its Newell normal, else cut into ears in that plane (up to 64 corners; a larger one
 /// is fanned); one of fewer corners is dropped. Lines after the last face are not read.
-/// Throws Error naming the file, the line and what was expected: a coordinate that is not a
+/// Throws Error naming the file, the line and what was expected: counts over 2^32 - 1 (32-bit
+/// indices), a coordinate that is not a
 /// number or not finite as a float, a missing value or index, an index that is no vertex, a
 /// file that ends early. With `out` null only checks (nothing is allocated per element).
 OffBody readOffBody(const std::string& name, std::string_view bytes, const OffHeader& header,

@@ -266,13 +266,7 @@ OffHeader readOffHeader(const std::string& name, std::string_view bytes) {
         "{}:{}: the OFF header's counts are '{} {}', expected the vertex and face counts "
         "(unsigned integers) after the OFF keyword",
         name, line, quoted(vertexWord), quoted(faceWord));
-  // Indices and counts are 32-bit.
-  constexpr uint64_t kMax = std::numeric_limits<uint32_t>::max();
-  if (h.vertices > kMax || h.faces > kMax)
-    fail(
-        "{}:{}: the OFF header declares {} vertices and {} faces, more than the {} 32-bit "
-        "indices can count",
-        name, faceLine, h.vertices, h.faces, kMax);
+  h.countsLine = faceLine;
   // The rest of the counts' line (the edge count, which nothing needs) is skipped.
   h.bodyOffset = in.nextLine();
   h.bodyLine = in.line();
@@ -282,6 +276,13 @@ OffHeader readOffHeader(const std::string& name, std::string_view bytes) {
 
 OffBody readOffBody(const std::string& name, std::string_view bytes, const OffHeader& h,
                     OffMesh* out) {
+  // Indices and counts are 32-bit (a file this large fails its size check first, inspectOff).
+  constexpr uint64_t kMax = std::numeric_limits<uint32_t>::max();
+  if (h.vertices > kMax || h.faces > kMax)
+    fail(
+        "{}:{}: the OFF header declares {} vertices and {} faces, more than the {} 32-bit "
+        "indices can count",
+        name, h.countsLine, h.vertices, h.faces, kMax);
   OffBody body;
   if (out) {
     out->points.reserve(size_t(h.vertices));
