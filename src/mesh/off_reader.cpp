@@ -285,9 +285,13 @@ OffBody readOffBody(const std::string& name, std::string_view bytes, const OffHe
         name, h.countsLine, h.vertices, h.faces, kMax);
   OffBody body;
   if (out) {
-    out->points.reserve(size_t(h.vertices));
-    if (h.normals) out->normals.reserve(size_t(h.vertices));
-    out->corners.reserve(3 * size_t(h.faces));
+    // No more than the rest of the file can hold (6 bytes a vertex, 2 a face at the least),
+    // whatever the header says, so that no count makes this allocate more than the file's size.
+    const uint64_t rest = bytes.size() - std::min(h.bodyOffset, bytes.size());
+    const size_t vertices = size_t(std::min(h.vertices, rest / 6 + 1));
+    out->points.reserve(vertices);
+    if (h.normals) out->normals.reserve(vertices);
+    out->corners.reserve(3 * size_t(std::min(h.faces, rest / 2 + 1)));
   }
   const size_t need = h.normals ? 6 : 3;
   std::vector<uint32_t> polygon;
