@@ -104,9 +104,10 @@ std::vector<uint32_t> firstEqual(const std::vector<std::array<T, 3>>& points) {
 // One mesh as a reader gives it (Assimp's post-processed scene, or the native OBJ or OFF
 // reader): its vertices, their normals (when the file has them) and its triangles. A vertex's
 // position is row pointOf[v] of `points` (row v without pointOf), its normal row normalOf[v] of
-// `normals` likewise: the native readers' vertices are triangle corners (as Assimp's importers
-// lay them out), which index the file's v and vn lines (OFF: its vertex lines). Without faces,
-// vertices 3f, 3f+1 and 3f+2 make triangle f.
+// `normals` likewise: the native OBJ reader's vertices are face corners (as Assimp's OBJ importer
+// lays them out), which index the file's v and vn lines. The native OFF reader's vertices are the
+// file's vertex lines, as Assimp's OFF importer gave them, and its triangles are `corners`, 3
+// vertices each. Without faces or corners, vertices 3f, 3f+1 and 3f+2 make triangle f.
 struct Part {
   const aiVector3D* points = nullptr;
   size_t pointCount = 0;
@@ -117,11 +118,17 @@ struct Part {
   size_t vertexCount = 0;
   const aiFace* faces = nullptr;
   size_t faces_ = 0;
+  const uint32_t* corners = nullptr;
+  size_t cornerCount = 0;
   uint32_t pointRow(size_t v) const { return pointOf ? pointOf[v] : uint32_t(v); }
   uint32_t normalRow(size_t v) const { return normalOf ? normalOf[v] : uint32_t(v); }
-  size_t faceCount() const { return faces ? faces_ : vertexCount / 3; }
+  size_t faceCount() const { return faces ? faces_ : corners ? cornerCount / 3 : vertexCount / 3; }
   /// Face f's corners; false when it is not a triangle (skipped).
   bool triangle(size_t f, std::array<uint32_t, 3>& out) const {
+    if (corners) {
+      out = {corners[3 * f], corners[3 * f + 1], corners[3 * f + 2]};
+      return true;
+    }
     if (!faces) {
       out = {uint32_t(3 * f), uint32_t(3 * f + 1), uint32_t(3 * f + 2)};
       return true;
@@ -352,11 +359,11 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     Part part;
     part.points = off.points.data();
     part.pointCount = off.points.size();
-    part.pointOf = off.corners.data();
     part.normals = off.normals.data();
     part.normalCount = off.normals.size();
-    part.normalOf = off.corners.data();
-    part.vertexCount = off.corners.size();
+    part.vertexCount = off.points.size();
+    part.corners = off.corners.data();
+    part.cornerCount = off.corners.size();
     mesh = weldParts(name, {part}, off.header.normals);
   } else if (plain) {
     Part part;

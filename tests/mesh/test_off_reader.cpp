@@ -96,12 +96,13 @@ TEST_F(OffReader, FansPolygonsAndDropsPointsAndLines) {
                               "OFF\n6 5 0\n"
                               "0 0 0\n2 0 0\n3 1 0\n2 2 0\n0 2 0\n-1 1 0\n"
                               "6 0 1 2 3 4 5\n"
-                              "0\n1 3\n2 0 5\n");
+                              "0\n1 3\n2 0 5\n3 0 4 5\n");
   const TriangleMesh m = loadMesh(path);
   ASSERT_EQ(m.positions.size(), 6u);
   EXPECT_EQ(m.positions[3], Vec3(2, 2, 0));
+  // The last face repeats the fan's last triangle: a duplicate, which the repair removes.
   EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}));
-  EXPECT_FALSE(m.repairs.any()) << m.repairs.summary();
+  EXPECT_EQ(m.repairs.duplicateFaces, 1u);
 }
 
 // A polygon that is not convex is cut into ears in its plane: still k - 2 triangles on its own
@@ -110,9 +111,9 @@ TEST_F(OffReader, CutsNonConvexPolygonsIntoEars) {
   const fs::path path = write("arrow.off", "OFF\n4 1 0\n0 0 0\n2 1 0\n0 2 0\n0.5 1 0\n4 0 1 2 3\n");
   const TriangleMesh m = loadMesh(path);
   ASSERT_EQ(m.positions.size(), 4u);
-  // Numbered by first use: the ears (3, 0, 1) and (2, 3, 1).
-  EXPECT_EQ(m.positions[0], Vec3(0.5, 1, 0));
-  EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}, {3, 0, 2}}));
+  // The ears (3, 0, 1) and (2, 3, 1).
+  EXPECT_EQ(m.positions[3], Vec3(0.5, 1, 0));
+  EXPECT_EQ(m.triangles, (std::vector<Tri>{{3, 0, 1}, {2, 3, 1}}));
   double area = 0;
   for (size_t t = 0; t < m.triangleCount(); ++t) {
     EXPECT_EQ(m.faceNormal(t), Vec3(0, 0, 1)) << t;
@@ -156,7 +157,8 @@ TEST_F(OffReader, NoffNormalsAreTheFilesNormals) {
 }
 
 // Positions are welded by exact equality as floats, as for every format: two vertex lines of
-// one point (and -0 = +0, the first one's sign kept) are one position, numbered by first use.
+// one point (and -0 = +0, the first one's sign kept) are one position, numbered in the file's
+// order (as Assimp's OFF importer numbered them); an unused vertex is removed and reported.
 TEST_F(OffReader, WeldsEqualPositionsInOrderOfFirstUse) {
   const fs::path path = write("weld.off",
                               "OFF\n6 2 0\n"
@@ -167,7 +169,8 @@ TEST_F(OffReader, WeldsEqualPositionsInOrderOfFirstUse) {
   EXPECT_EQ(m.positions[0], Vec3(1, 0, 0));
   EXPECT_TRUE(std::signbit(m.positions[1].z()));
   EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}}));
-  EXPECT_EQ(m.repairs.duplicateFaces, 1u);  // (2, 1, 0) is the first one, reversed
+  EXPECT_EQ(m.repairs.duplicateFaces, 1u);    // (2, 1, 0) is the first one, reversed
+  EXPECT_EQ(m.repairs.isolatedVertices, 1u);  // 5 5 5
 }
 
 // A file may start with its counts (the keyword is optional); the header's counts may also
@@ -184,7 +187,7 @@ TEST_F(OffReader, TheKeywordIsOptional) {
 }
 
 // Native and Assimp readers give the same mesh, bit for bit, on a file both read alike
-// (triangles only, numbers exact as floats): one vertex per corner, welded by first use.
+// (triangles only, numbers exact as floats): the file's vertices, welded in their order.
 TEST_F(OffReader, GivesAssimpsMeshOnTriangles) {
   const fs::path path = write("tris.off",
                               "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0.5 1\n0 0 0\n"
@@ -216,7 +219,7 @@ TEST_F(OffReader, BadFilesAreRefusedNamingTheLine) {
   expectRefused("homogeneous.off", "4OFF\n3 1 0\n", {"homogeneous.off:1: '4OFF'", "4OFF"});
   expectRefused("dimension.off", "nOFF\n3\n3 1 0\n", {"dimension.off:1: 'nOFF'"});
   expectRefused("wide.off", "OFF\n4294967296 1 0\n",
-                {"wide.off: the OFF header declares 4294967296 vertices", "the file has 18 bytes"});
+                {"wide.off: the OFF header declares 4294967296 vertices", "the file has 19 bytes"});
   expectRefused("short.off", "OFF\n3 1 0\n0 0 0\n# two\n1 0\n0 1 0\n3 0 1 2\n",
                 {"short.off:5: vertex 1 needs 3 finite coordinates: '1 0'"});
   expectRefused("word.off", "OFF\n3 1 0\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n",
