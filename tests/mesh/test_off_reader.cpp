@@ -159,7 +159,7 @@ TEST_F(OffReader, NoffNormalsAreTheFilesNormals) {
 // Positions are welded by exact equality as floats, as for every format: two vertex lines of
 // one point (and -0 = +0, the first one's sign kept) are one position, numbered in the file's
 // order (as Assimp's OFF importer numbered them); an unused vertex is removed and reported.
-TEST_F(OffReader, WeldsEqualPositionsInOrderOfFirstUse) {
+TEST_F(OffReader, WeldsEqualPositionsInTheFilesOrder) {
   const fs::path path = write("weld.off",
                               "OFF\n6 2 0\n"
                               "5 5 5\n1 0 0\n0 0 -0\n0 1 0\n0 0 0\n1.00000001 0 0\n"
