@@ -1,6 +1,7 @@
 // Private to the mesh layer: the pieces that the checks of mesh_io_check.cpp (OBJ, OFF, STL)
-// and ply_check.cpp (PLY) share. Every check throws Error naming the file, and the line or the
-// element, before Assimp reads the file.
+// and ply_check.cpp (PLY) share, and the native OBJ and OFF readers (obj_reader.cpp,
+// off_reader.cpp). Every check throws Error naming the file, and the line or the element, before
+// a reader allocates for the file's elements.
 #pragma once
 
 #include <assimp/vector3.h>
@@ -40,8 +41,10 @@ bool parseFinite(std::string_view word);
 
 /// inspectMeshFile on the file's bytes, already read (readMeshFile): what loadMesh does, so the
 /// file is read once for the checks and the reader. `path` names the file in errors and gives
-/// its format by extension.
-MeshFileInfo inspectMeshBytes(const std::filesystem::path& path, std::string_view bytes);
+/// its format by extension. With offBody false, an OFF file's header alone is checked: its body
+/// is left to readOffBody, which checks it as it reads it.
+MeshFileInfo inspectMeshBytes(const std::filesystem::path& path, std::string_view bytes,
+                              bool offBody = true);
 
 /// The whole file; throws Error naming it when it cannot be read.
 std::string readMeshFile(const std::filesystem::path& path);
@@ -62,6 +65,57 @@ struct ObjCorners {
 /// nullopt for anything else (objects, groups, materials, polygons, lines, homogeneous or
 /// coloured vertices, ...), which Assimp then reads. `text` must end in a NUL (std::string's).
 std::optional<ObjCorners> readPlainObj(std::string_view text);
+
+/// An ASCII OFF file's header (off_reader.cpp): [ST][C][N]OFF, optional, then the vertex and
+/// face counts (on the keyword's line or after it; the rest of the counts' line, the edge
+/// count, is not read). Its body starts on the next line.
+struct OffHeader {
+  std::string keyword;  ///< "OFF", "COFF", "NOFF", ...; "" when the file starts with its counts
+  bool texcoords = false, colours = false, normals = false;  ///< ST, C and N
+  uint64_t vertices = 0, faces = 0;
+  uint64_t countsLine = 0;  ///< the line of the face count
+  size_t bodyOffset = 0;    ///< the first byte of the line after the counts
+  uint64_t bodyLine = 0;    ///< its line number, from 1
+};
+
+/// What the body held beyond its vertices.
+struct OffBody {
+  uint64_t triangles = 0;           ///< n - 2 per face of n ≥ 3 corners
+  uint64_t droppedFaces = 0;        ///< faces of fewer than 3 corners (points, lines): dropped
+  uint64_t firstEmptyFaceLine = 0;  ///< the line of the first face of 0 corners, 0 if none
+};
+
+/// An OFF file as read: positions (and NOFF's normals, one per position) rounded to floats
+/// from the correctly rounded doubles, and 3 corners per triangle, indices into `points` (their
+/// triangles are only kept when `points` is, OffMesh given to readOffBody).
+struct OffMesh {
+  OffHeader header;
+  OffBody body;
+  std::vector<aiVector3D> points, normals;
+  std::vector<uint32_t> corners;
+};
+
+/// Reads an OFF header; throws Error naming the file and the line when it is not one: not the
+/// keyword or counts, binary OFF, 4OFF or nOFF (homogeneous or n-dimensional vertices). Nothing
+/// is allocated per element.
+OffHeader readOffHeader(const std::string& name, std::string_view bytes);
+
+/// Reads the body after `header` line by line, as scripts/corpus-manifest.py does: blank lines
+/// and '#' comments (anywhere on a line) skipped, then one vertex per line (x y z, then nx ny
+/// nz for NOFF; anything after is not read), then one face per line "k i1 .. ik" (anything
+/// after, a colour, is not read). A face of k ≥ 3 corners becomes k - 2 triangles on its
+/// corners, as the manifest counts them: fanned from its first corner when it is convex in the
+/// plane of its Newell normal, else cut into ears in that plane (up to 64 corners; a larger one
+/// is fanned); one of fewer corners is dropped. Lines after the last face are not read.
+/// Throws Error naming the file, the line and what was expected: counts over 2^32 - 1 (32-bit
+/// indices), a coordinate that is not a
+/// number or not finite as a float, a missing value or index, an index that is no vertex, a
+/// file that ends early. With `out` null only checks (nothing is allocated per element).
+OffBody readOffBody(const std::string& name, std::string_view bytes, const OffHeader& header,
+                    OffMesh* out);
+
+/// readOffHeader and readOffBody into one OffMesh.
+OffMesh readOff(const std::string& name, std::string_view bytes);
 
 /// A seekable input stream over bytes in memory: the checks read the loader's one copy of the
 /// file through it (the bytes must outlive the stream).

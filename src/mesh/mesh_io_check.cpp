@@ -99,157 +99,32 @@ std::string lowerExtension(const std::filesystem::path& p) {
   return ext;
 }
 
-// A byte stream over the file that yields whitespace-separated words and skips '#' comments
-// to the end of their line, keeping its offset; reads in small blocks, allocates per word only.
-class WordReader {
- public:
-  explicit WordReader(std::string_view bytes) : in_(bytes) {}
-  uint64_t offset() const { return offset_; }
-  /// The next word, or "" at the end of the file. Words longer than 256 bytes are cut there.
-  std::string next() {
-    int c = skip();
-    std::string word;
-    while (c != EOF && !std::isspace(c) && c != '#') {
-      if (word.size() < 256) word.push_back(char(c));
-      c = get();
-    }
-    if (c == '#') unget();
-    return word;
-  }
-
- private:
-  int get() {
-    const int c = in_.get();
-    if (c != EOF) ++offset_;
-    return c;
-  }
-  void unget() {
-    in_.unget();
-    --offset_;
-  }
-  int skip() {
-    for (;;) {
-      int c = get();
-      while (c != EOF && std::isspace(c)) c = get();
-      if (c != '#') return c;
-      while (c != EOF && c != '\n' && c != '\r') c = get();
-    }
-  }
-  MemoryStream in_;
-  uint64_t offset_ = 0;
-};
-
-// The lines after an OFF header: `vertices` lines of at least `dims` finite numbers, then
-// `faces` lines "k i1 .. ik" with k ≥ 1 and every index below `vertices` (blank lines and
-// '#' comments skipped). Assimp's OFF importer reads past its buffers on a short vertex line
-// and keeps out-of-range indices, so each is refused here with its line.
-void checkOffBody(const std::filesystem::path& path, std::string_view bytes, uint64_t headerBytes,
-                  uint64_t dims, uint64_t vertices, uint64_t faces) {
-  const std::string name = path.string();
-  MemoryStream in(bytes);
-  uint64_t lineNo = 1;
-  int last = '\n';
-  for (uint64_t i = 0; i < headerBytes; ++i)
-    if ((last = in.get()) == '\n') ++lineNo;
-  std::string line;
-  // The rest of the line with the counts (the edge count), unless the face count ended it.
-  if (last != '\n') std::getline(in, line);
-  uint64_t v = 0, f = 0;
-  while ((v < vertices || f < faces) && std::getline(in, line)) {
-    ++lineNo;
-    if (line.find('\0') != std::string::npos)
-      fail("{}:{}: a NUL byte in an OFF file", name, lineNo);
-    const std::vector<std::string_view> w = words(line);
-    if (w.empty() || w[0][0] == '#') continue;
-    if (v < vertices) {
-      for (uint64_t k = 0; k < dims; ++k)
-        if (k >= w.size() || !parseFinite(w[k]))
-          fail("{}:{}: vertex {} needs {} finite coordinates: '{}'", name, lineNo, v, dims, line);
-      ++v;
-      continue;
-    }
-    const std::optional<uint64_t> k = parseCount(w[0]);
-    // A face "0": Assimp's importer reads out of bounds on it (fuzz_off).
-    if (!k || *k == 0 || *k + 1 > w.size())
-      fail("{}:{}: face {}: expected a vertex count of at least 1 and that many indices: '{}'",
-           name, lineNo, f, line);
-    for (uint64_t j = 1; j <= *k; ++j) {
-      const std::optional<uint64_t> index = parseCount(w[j]);
-      if (!index || *index >= vertices)
-        fail("{}:{}: face {}: index '{}' is not a vertex (0 to {})", name, lineNo, f, w[j],
-             vertices - 1);
-    }
-    ++f;
-  }
-  if (v < vertices || f < faces)
-    fail("{}: the OFF header declares {} vertices and {} faces, the file holds {} and {}", name,
-         vertices, faces, v, f);
-}
-
-// OFF: [ST][C][N][4][n]OFF, [dimension], vertex count, face count, edge count, then one vertex
-// per line and one face "k i1 .. ik" per line (what Assimp's OFF importer reads).
-MeshFileInfo inspectOff(const std::filesystem::path& path, std::string_view bytes) {
+// OFF: [ST][C][N]OFF, the vertex and face counts, then one vertex per line and one face
+// "k i1 .. ik" per line (off_reader.cpp reads it). The counts must fit in the file's size;
+// with `body`, every vertex and face line is checked as well (readOffBody, allocating nothing).
+MeshFileInfo inspectOff(const std::filesystem::path& path, std::string_view bytes, bool body) {
   const std::string name = path.string();
   const uint64_t fileBytes = bytes.size();
-  WordReader in(bytes);
-  std::string word = in.next();
-  bool texcoords = false, colours = false, normals = false, homogeneous = false, dimension = false;
-  std::string_view key = word;
-  const auto take = [&](std::string_view prefix) {
-    if (key.substr(0, prefix.size()) != prefix) return false;
-    key.remove_prefix(prefix.size());
-    return true;
-  };
-  texcoords = take("ST");
-  colours = take("C");
-  normals = take("N");
-  homogeneous = take("4");
-  dimension = take("n");
-  uint64_t dims = 3;
-  if (key == "OFF") {
-    word = in.next();
-    if (word == "BINARY") fail("{}: binary OFF is not supported, expected an ASCII OFF file", name);
-    if (dimension) {
-      const std::optional<uint64_t> d = parseCount(word);
-      if (!d || *d > 3) fail("{}: the nOFF header's dimension '{}' is not 1, 2 or 3", name, word);
-      dims = *d;
-      word = in.next();
-    }
-  } else {
-    // The keyword is optional: the counts may come first (Assimp then reads 3 coordinates).
-    texcoords = colours = normals = homogeneous = false;
-  }
-  const std::optional<uint64_t> vertices = parseCount(word);
-  const std::string faceWord = in.next();
-  const std::optional<uint64_t> faces = parseCount(faceWord);
-  if (!vertices || !faces)
-    fail(
-        "{}: the OFF header's counts are '{} {}', expected the vertex and face counts "
-        "(unsigned integers) after the OFF keyword",
-        name, word, faceWord);
-  const uint64_t headerBytes = in.offset();
+  const OffHeader h = readOffHeader(name, bytes);
   // A vertex is a line of its numbers, each at least a digit and a separator; a face is at
-  // least its vertex count and a separator ("0" faces are skipped by Assimp but still a line).
-  const uint64_t numbers =
-      dims + (homogeneous ? 1 : 0) + (normals ? 3 : 0) + (colours ? 1 : 0) + (texcoords ? 2 : 0);
-  const uint64_t perVertex = std::max<uint64_t>(1, 2 * numbers), perFace = 2;
-  const uint64_t need = mulAdd(*vertices, perVertex, mulAdd(*faces, perFace));
+  // least its vertex count and a separator.
+  const uint64_t numbers = 3 + (h.normals ? 3 : 0) + (h.colours ? 1 : 0) + (h.texcoords ? 2 : 0);
+  const uint64_t perVertex = 2 * numbers, perFace = 2;
+  const uint64_t need = mulAdd(h.vertices, perVertex, mulAdd(h.faces, perFace));
   // The last line may end without its separator.
-  if (need > 0 && need - 1 > fileBytes - std::min(fileBytes, headerBytes))
+  if (need > 0 && need - 1 > fileBytes - std::min<uint64_t>(fileBytes, h.bodyOffset))
     fail(
         "{}: the OFF header declares {} vertices and {} faces, which take at least {} bytes "
         "({} per vertex, {} per face); the file has {} bytes",
-        name, *vertices, *faces, need, perVertex, perFace, fileBytes);
-  checkAssimpCount(name, "OFF", *vertices, "vertices");
-  checkAssimpCount(name, "OFF", *faces, "faces");
-  checkOffBody(path, bytes, headerBytes, dims, *vertices, *faces);
+        name, h.vertices, h.faces, need, perVertex, perFace, fileBytes);
+  if (body) readOffBody(name, bytes, h, nullptr);
   MeshFileInfo info;
   info.format = "OFF";
   info.fileBytes = fileBytes;
-  info.vertices = *vertices;
-  info.faces = *faces;
-  info.corners = 3 * *faces;
-  info.triangles = *faces;
+  info.vertices = h.vertices;
+  info.faces = h.faces;
+  info.corners = 3 * h.faces;
+  info.triangles = h.faces;
   return info;
 }
 
@@ -484,15 +359,15 @@ MeshFileInfo inspectMeshFile(const std::filesystem::path& path) {
   return inspectMeshBytes(path, readMeshFile(path));
 }
 
-MeshFileInfo mesh_check::inspectMeshBytes(const std::filesystem::path& path,
-                                          std::string_view bytes) {
+MeshFileInfo mesh_check::inspectMeshBytes(const std::filesystem::path& path, std::string_view bytes,
+                                          bool offBody) {
   const std::string name = path.string();
   const std::string ext = lowerExtension(path);
   MeshFileInfo info;
   if (ext == ".obj")
     info = validateObj(path, bytes);
   else if (ext == ".off")
-    info = inspectOff(path, bytes);
+    info = inspectOff(path, bytes, offBody);
   else if (ext == ".ply")
     info = mesh_check::inspectPly(path, bytes);
   else if (ext == ".stl")

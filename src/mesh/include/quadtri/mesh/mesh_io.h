@@ -1,4 +1,4 @@
-// Mesh import (OBJ, PLY, STL, OFF through Assimp) and export (OBJ, PLY with normals).
+// Mesh import (OBJ, PLY, STL through Assimp; OFF, plain OBJ natively) and export (OBJ, PLY).
 #pragma once
 
 #include <filesystem>
@@ -13,9 +13,9 @@ namespace quadtri {
 /// so adjacency is known; per-corner normals are kept as the file gives them (STL facet
 /// normals are not shading normals and are ignored). `normals` picks the shading normals
 /// (applyNormals): with File, a file without normals gets angle-weighted normals split at the
-/// crease angle. Throws Error naming the file on failure. Before Assimp reads the file,
+/// crease angle. Throws Error naming the file on failure. Before a reader reads the file,
 /// inspectMeshFile checks its header's counts against its size and, given a budget,
-/// chargeMeshFile refuses a mesh whose load and model would exceed it.
+/// chargeMeshFile refuses a mesh whose load and model would exceed it (mesh_reader.h: readers).
 TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& normals = {},
                       MemoryBudget* budget = nullptr);
 
