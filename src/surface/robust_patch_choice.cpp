@@ -44,6 +44,7 @@ bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
 // moves by about μ·h²/ℓ, both ways, near the candidate and near its graph member. L² and its
 // gradient vanish on the triangle's plane, so the corners and their normals stay.
 constexpr double kSquareSteps[] = {0.5, -0.5, 2.0, -2.0, 8.0, -8.0};
+constexpr double kMaxSquareRise = 0.25;
 
 // q + λ·pencil at unit coefficient norm; false where that vanishes or overflows.
 bool addSquare(const QuadricCoeffs& q, const QuadricCoeffs& pencil, double lambda,
@@ -280,10 +281,17 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
         return g / (3.0 * scale * ap);
       };
       const double unitFit = unit(q), unitGraph = hasGraph ? unit(graph) : 0.0;
+      // A member moved this way rises no farther than a quarter of a mean edge: the steps
+      // lift sheets the fit's own checks let rise further (a stray-sheet bound of its own).
+      const double squareReach = std::min(reach, kMaxSquareRise * scale);
+      const auto keepSquare = [&](const QuadricCoeffs& member) {
+        return cornerError(member) <= error && tryQuadric(t, member, squareReach, cell);
+      };
       for (double step : kSquareSteps) {
-        if (addSquare(q, squareOfPlane, step * unitFit, *square) && keep(*square))
+        if (addSquare(q, squareOfPlane, step * unitFit, *square) && keepSquare(*square))
           return Found::Square;
-        if (hasGraph && addSquare(graph, squareOfPlane, step * unitGraph, *square) && keep(*square))
+        if (hasGraph && addSquare(graph, squareOfPlane, step * unitGraph, *square) &&
+            keepSquare(*square))
           return Found::Square;
       }
       return Found::None;
@@ -311,7 +319,9 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
       if (found != Found::Square || cornerError(patches_[t].q) < squareError) return finish(blend);
       break;
     }
-    if (found == Found::Square && tryQuadric(t, square, reach, cell)) return finish(0.0);
+    if (found == Found::Square &&
+        tryQuadric(t, square, std::min(reach, kMaxSquareRise * m.meanEdgeLength(t)), cell))
+      return finish(0.0);
   }
   makeFlat(t, reach, cell);
   finish(1.0);
