@@ -62,18 +62,6 @@ class TriangleCrossings {
   std::vector<uint32_t> ringStart_, ring_;
 };
 
-// A patch hit at signed distance s along the line, whether it enters the surface there, and
-// whether it may be one point of a boundary two primitives share (always, for quadric patches;
-// for Bézier pieces only a hit on its piece's boundary).
-struct LineHit {
-  double s;
-  bool entering;
-  bool shared = true;
-  /// Vertices of the triangles the primitive stands for (up to two), ~0u where unknown.
-  std::array<uint32_t, 6> vertices{~0u, ~0u, ~0u, ~0u, ~0u, ~0u};
-  Vec3 point = Vec3::Zero();  ///< where the line meets the primitive
-};
-
 // Whether two hits may be one point of a boundary their primitives share (always true where a
 // hit does not know its triangles): their triangles share an edge (or are one), or they share
 // one vertex and both hits lie within `near` of it (the only point two such primitives have
@@ -96,28 +84,18 @@ bool mayShareBoundary(const LineHit& a, const LineHit& b, const std::vector<Vec3
 // be the same point as its neighbour's hit; one farther inside is a crossing of its own.
 constexpr double kBoundaryBarycentric = 1e-6;
 
-// Crossings among patch hits: a cluster of hits closer than `mergeDistance` is one place where
-// the line meets the surface. Its hits are too close to order, so only their balance counts: a
-// line through a shared boundary enters every patch there (or a fold, a bridge and its patches
-// enter twice and leave once), which is one crossing; a cluster that enters as often as it
-// leaves touches the surface, which is two.
-//
-// Only hits that may lie on a shared boundary join a cluster's balance: an interior hit of a
-// Bézier piece is a crossing of its own however close another is (two sheets of a surface that
-// folds over itself near an edge, where the data bends it sharply, meet a line 1e-8 apart).
-// And a cluster's balance is taken per group of hits whose triangles are joined through shared
-// vertices: primitives of triangles far apart on the mesh share no boundary, so their hits are
-// separate crossings however close (two components of a mesh that pass through each other
-// cross where a line meets both within the merge distance: `bones`).
+}  // namespace
+
 size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance,
                       const std::vector<Vec3>& positions) {
   std::sort(line.begin(), line.end(), [](const LineHit& a, const LineHit& b) { return a.s < b.s; });
   size_t crossings = 0;
   std::vector<size_t> group;
+  const double near = 10.0 * mergeDistance;
   for (size_t i = 0; i < line.size();) {
     size_t j = i;
     while (j < line.size() && (j == i || line[j].s - line[j - 1].s < mergeDistance)) ++j;
-    // Groups: connected components of mayShareBoundary among the cluster's shared hits.
+    // Groups: each hit joins the first group all of whose hits it may share a boundary with.
     group.assign(j - i, ~size_t(0));
     size_t groups = 0;
     for (size_t a = i; a < j; ++a) {
@@ -125,33 +103,24 @@ size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance,
         ++crossings;
         continue;
       }
-      if (group[a - i] != ~size_t(0)) continue;
-      group[a - i] = groups;
-      for (size_t grown = 1; grown > 0;) {
-        grown = 0;
-        for (size_t b = i; b < j; ++b) {
-          if (!line[b].shared || group[b - i] != ~size_t(0)) continue;
-          for (size_t c = i; c < j; ++c)
-            if (group[c - i] == groups &&
-                mayShareBoundary(line[b], line[c], positions, 10.0 * mergeDistance)) {
-              group[b - i] = groups;
-              ++grown;
-              break;
-            }
-        }
+      for (size_t g = 0; g < groups && group[a - i] == ~size_t(0); ++g) {
+        bool all = true;
+        for (size_t b = i; b < a && all; ++b)
+          all = group[b - i] != g || mayShareBoundary(line[a], line[b], positions, near);
+        if (all) group[a - i] = g;
       }
+      if (group[a - i] == ~size_t(0)) group[a - i] = groups++;
+    }
+    for (size_t g = 0; g < groups; ++g) {
       long balance = 0;
       for (size_t b = i; b < j; ++b)
-        if (group[b - i] == groups) balance += line[b].entering ? 1 : -1;
+        if (group[b - i] == g) balance += line[b].entering ? 1 : -1;
       crossings += balance != 0 ? 1 : 2;
-      ++groups;
     }
     i = j;
   }
   return crossings;
 }
-
-}  // namespace
 
 double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options) {
   if (options.lines == 0) fail("crack rate: the number of lines must be positive");

@@ -18,14 +18,16 @@ constexpr int kBoundSamples = 12;
 // Blends of the corner normals towards the face normal tried before the flat plane.
 constexpr double kBlends[] = {0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.95};
 
+// The quadratic form of c along n.
+double alongNormal(const QuadricCoeffs& c, const Vec3& n) {
+  return c[0] * n.x() * n.x() + c[1] * n.y() * n.y() + c[2] * n.z() * n.z() + c[3] * n.x() * n.y() +
+         c[4] * n.x() * n.z() + c[5] * n.y() * n.z();
+}
+
 // The member q + λ·pencil whose quadratic form vanishes along n (a graph over the triangle's
 // plane); false where the pencil has no such member.
 bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
-  const auto alongNormal = [&n](const QuadricCoeffs& c) {
-    return c[0] * n.x() * n.x() + c[1] * n.y() * n.y() + c[2] * n.z() * n.z() +
-           c[3] * n.x() * n.y() + c[4] * n.x() * n.z() + c[5] * n.y() * n.z();
-  };
-  const double ap = alongNormal(pencil), aq = alongNormal(q);
+  const double ap = alongNormal(pencil, n), aq = alongNormal(q, n);
   if (!(std::abs(ap) > 0.0) || aq == 0.0) return false;
   double norm2 = 0.0;
   for (int i = 0; i < 10; ++i) {
@@ -34,6 +36,26 @@ bool graphMember(const QuadricCoeffs& pencil, const Vec3& n, QuadricCoeffs& q) {
   }
   if (!(norm2 > 0.0) || !std::isfinite(norm2)) return false;
   for (double& c : q) c /= std::sqrt(norm2);
+  return true;
+}
+
+// Members q + μ·(G/ℓ)·L² of a candidate's pencil tried before blending its normals (G the mean
+// length of ∇q at the corners, ℓ the mean edge length): a sheet h above the triangle's plane
+// moves by about μ·h²/ℓ, both ways, near the candidate and near its graph member. L² and its
+// gradient vanish on the triangle's plane, so the corners and their normals stay.
+constexpr double kSquareSteps[] = {0.5, -0.5, 2.0, -2.0, 8.0, -8.0};
+constexpr double kMaxSquareRise = 0.25;
+
+// q + λ·pencil at unit coefficient norm; false where that vanishes or overflows.
+bool addSquare(const QuadricCoeffs& q, const QuadricCoeffs& pencil, double lambda,
+               QuadricCoeffs& out) {
+  double norm2 = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    out[i] = q[i] + lambda * pencil[i];
+    norm2 += out[i] * out[i];
+  }
+  if (!(norm2 > 0.0) || !std::isfinite(norm2)) return false;
+  for (double& c : out) c /= std::sqrt(norm2);
   return true;
 }
 
@@ -223,12 +245,66 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
   for (int k = 0; k < 3; ++k)
     longest = std::max(longest, (m.corner(t, (k + 1) % 3) - m.corner(t, k)).norm());
   if (m.faceCross(t).norm() > 1e-10 * longest * longest) {
-    // The fit (moved along its pencil by the mesh-wide steps), then its graph member.
-    if (tryQuadric(t, fitted, reach, cell)) return finish(0.0);
-    QuadricCoeffs graph = fitted;
-    if (graphMember(pencil, n, graph) && tryQuadric(t, graph, reach, cell)) return finish(0.0);
+    // The largest angle between a quadric's oriented gradient and the corner normals.
+    const auto cornerError = [&](const QuadricCoeffs& q) {
+      double facing = 0.0;
+      for (int k = 0; k < 3; ++k) facing += quadricGradient(q, m.corner(t, k)).dot(n);
+      const double orientation = facing < 0.0 ? -1.0 : 1.0;
+      double error = 0.0;
+      for (int k = 0; k < 3; ++k)
+        error = std::max(error, angleDegrees(orientation * quadricGradient(q, m.corner(t, k)),
+                                             m.cornerNormal(t, k)));
+      return error;
+    };
+    const double scale = m.meanEdgeLength(t);
+    // A candidate, then members of its pencil: its graph member, then, with `square` given,
+    // q + μ·(G/ℓ)·L² around both, the one found left in `square`. L² keeps the corners and, in
+    // exact arithmetic, their gradients; a member whose corner normals come out worse by more
+    // than 1e-6° (the pencil's round-off on slivers, or a member dominated by it that turns a
+    // corner's gradient over) is not kept.
+    enum class Found { None, Candidate, Square };
+    const auto tryPencil = [&](const QuadricCoeffs& q, const QuadricCoeffs& squareOfPlane,
+                               QuadricCoeffs* square) {
+      if (tryQuadric(t, q, reach, cell)) return Found::Candidate;
+      const double error = cornerError(q) + 1e-6;
+      const auto keep = [&](const QuadricCoeffs& member) {
+        return cornerError(member) <= error && tryQuadric(t, member, reach, cell);
+      };
+      QuadricCoeffs graph = q;
+      const bool hasGraph = graphMember(squareOfPlane, n, graph);
+      if (hasGraph && keep(graph)) return Found::Candidate;
+      const double ap = alongNormal(squareOfPlane, n);
+      if (!square || !(std::abs(ap) > 0.0)) return Found::None;
+      const auto unit = [&](const QuadricCoeffs& c) {
+        double g = 0.0;
+        for (int k = 0; k < 3; ++k) g += quadricGradient(c, m.corner(t, k)).norm();
+        return g / (3.0 * scale * ap);
+      };
+      const double unitFit = unit(q), unitGraph = hasGraph ? unit(graph) : 0.0;
+      // A member moved this way rises no farther than a quarter of a mean edge: the steps
+      // lift sheets the fit's own checks let rise further (a stray-sheet bound of its own).
+      const double squareReach = std::min(reach, kMaxSquareRise * scale);
+      const auto keepSquare = [&](const QuadricCoeffs& member) {
+        return cornerError(member) <= error && tryQuadric(t, member, squareReach, cell);
+      };
+      for (double step : kSquareSteps) {
+        if (addSquare(q, squareOfPlane, step * unitFit, *square) && keepSquare(*square))
+          return Found::Square;
+        if (hasGraph && addSquare(graph, squareOfPlane, step * unitGraph, *square) &&
+            keepSquare(*square))
+          return Found::Square;
+      }
+      return Found::None;
+    };
+    // The fit (moved along its pencil by the mesh-wide steps) and its pencil.
+    QuadricCoeffs square;
+    const Found found = tryPencil(fitted, pencil, &square);
+    if (found == Found::Candidate) return finish(0.0);
+    const double squareError = found == Found::Square ? cornerError(square) : 0.0;
     // Corner normals blended towards the face normal: corners stay exact, the normals move
-    // as little as the checks allow.
+    // as little as the checks allow. Where a member q + μL² of the fit passed, the first blend
+    // that passes replaces it only if its corner normals come closer to the shading normals
+    // (normals no quadric comes near, whose blends agree with the data better than the fit).
     for (double blend : kBlends) {
       CornerData data;
       for (int k = 0; k < 3; ++k) {
@@ -239,11 +315,13 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
         data.arcMidpoint[k] = edgeArcMidpoint(data.position[k], data.normal[k],
                                               data.position[(k + 1) % 3], data.normal[(k + 1) % 3]);
       const QuadricFit fit = fitQuadric(data);
-      if (tryQuadric(t, fit.q, reach, cell)) return finish(blend);
-      QuadricCoeffs member = fit.q;
-      if (graphMember(fit.pencil, n, member) && tryQuadric(t, member, reach, cell))
-        return finish(blend);
+      if (tryPencil(fit.q, fit.pencil, nullptr) == Found::None) continue;
+      if (found != Found::Square || cornerError(patches_[t].q) < squareError) return finish(blend);
+      break;
     }
+    if (found == Found::Square &&
+        tryQuadric(t, square, std::min(reach, kMaxSquareRise * m.meanEdgeLength(t)), cell))
+      return finish(0.0);
   }
   makeFlat(t, reach, cell);
   finish(1.0);

@@ -196,6 +196,44 @@ TEST(CrackRate, PatchesSharingOneVertexShareABoundaryOnlyThere) {
   EXPECT_EQ(crackRate(modelGeometry(*model, Tessellation{}), lines(20000)), 0.0);
 }
 
+// Hits of a fan of three triangles around vertex 0: A = (0, 1, 2) and B = (0, 2, 3) share the
+// edge 0–2, B and C = (0, 3, 4) the edge 0–3; A and C share only vertex 0.
+LineHit fanHit(int triangle, const Vec3& point, bool entering) {
+  LineHit hit{0.0, entering};
+  for (int k = 0; k < 3; ++k) hit.vertices[size_t(k)] = uint32_t(k == 0 ? 0 : triangle + k);
+  hit.point = point;
+  return hit;
+}
+
+TEST(CrackRate, HitsAreOneCrossingOnlyWhereEveryTwoMayShareABoundary) {
+  const std::vector<Vec3> positions{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                                    Vec3(-1, 1, 0)};
+  const double merge = 1e-7;
+  // A line through the edge 0–2 of A and B, one unit from vertex 0, enters both: one crossing.
+  const Vec3 onEdge(0.5, 0.5, 0.0);
+  std::vector<LineHit> line{fanHit(0, onEdge, true), fanHit(1, onEdge, true)};
+  EXPECT_EQ(patchCrossings(line, merge, positions), 1u);
+  // A and C alone, met there (C's patch bulging over A's), share no boundary so far from their
+  // one vertex: two crossings.
+  line = {fanHit(0, onEdge, true), fanHit(2, onEdge, true)};
+  EXPECT_EQ(patchCrossings(line, merge, positions), 2u);
+  // All three: B shares an edge with each of A and C, which grouped all three as one crossing
+  // (balance 3) and the line cracked; A with B is one crossing and C another.
+  line = {fanHit(0, onEdge, true), fanHit(1, onEdge, true), fanHit(2, onEdge, true)};
+  EXPECT_EQ(patchCrossings(line, merge, positions), 2u);
+  // The hit order does not matter.
+  line = {fanHit(2, onEdge, true), fanHit(1, onEdge, true), fanHit(0, onEdge, true)};
+  EXPECT_EQ(patchCrossings(line, merge, positions), 2u);
+  // Near vertex 0 every two share a boundary: a line through the vertex is one crossing.
+  const Vec3 atVertex(1e-8, 1e-8, 0.0);
+  line = {fanHit(0, atVertex, true), fanHit(1, atVertex, true), fanHit(2, atVertex, true)};
+  EXPECT_EQ(patchCrossings(line, merge, positions), 1u);
+  // Hits farther apart along the line than the merge distance are crossings of their own.
+  line = {fanHit(0, onEdge, true), fanHit(1, onEdge, false)};
+  line[1].s = 1e-3;
+  EXPECT_EQ(patchCrossings(line, merge, positions), 2u);
+}
+
 TEST(CrackRate, BadInputIsAnError) {
   const ModelGeometry geometry = modelGeometry(*makeModel("flat", icosphere(0)), Tessellation{});
   EXPECT_THROW(crackRate(geometry, lines(0)), Error);

@@ -61,6 +61,33 @@ TEST(RobustFallback, SliversAtAConeApexKeepTheirNormals) {
   }
 }
 
+TEST(RobustFallback, ThinRingKeepsItsNormalsThroughMembersOfThePencil) {
+  // A thin torus (R = 1, r = 0.02) of 96 segments and 3 rings: a tube of triangular section
+  // whose corner normals turn 120° across each face. A third of the fits (and their graph
+  // members) left the checks of their cells, and those patches took blended normals, 30° off
+  // the shading normals at their corners. Members q + μL² of the fit's pencil, which keep the
+  // corners and their normals, now pass for every one of them.
+  ShapeParams params;
+  params.major = 1.0;
+  params.minor = 0.02;
+  params.segments = 96;
+  params.rings = 3;
+  const auto mesh = std::make_shared<const TriangleMesh>(makeBuiltin("torus", params).mesh);
+  ASSERT_EQ(mesh->triangleCount(), 576u);
+  const RobustImplicitModel model(mesh);
+  EXPECT_EQ(model.fallbackCount(), 0u);
+  EXPECT_EQ(model.blendedCount(), 0u);
+  EXPECT_EQ(model.flatCount(), 0u);
+  for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+    EXPECT_EQ(model.blend(t), 0.0) << t;
+    EXPECT_LT(model.cornerNormalErrorDeg(t), 0.2) << t;
+  }
+  // Still watertight.
+  CrackRateOptions lines;
+  lines.lines = 20000;
+  EXPECT_EQ(crackRate(modelGeometry(model, Tessellation{}), lines), 0.0);
+}
+
 TEST(RobustFallback, CellsOfTrianglesFacingTheSameWayMayOverlap) {
   // The 21 triangles of CGAL's pig.stl that share a vertex with its triangles 16020 and 16798
   // (here 4 and 15), with their normals: the two share no vertex and face within 8° of each

@@ -2,10 +2,13 @@
 // times. A watertight surface is crossed an even number of times by every line.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "quadtri/geometry/model_geometry.h"
+#include "quadtri/math/vec.h"
 
 namespace quadtri {
 
@@ -30,5 +33,39 @@ struct CrackRateOptions {
 /// cross the same way (one crossing through a shared boundary); a cluster that enters and leaves
 /// counts twice.
 double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options = {});
+
+/// A primitive's hit at signed distance s along a line, whether it enters the surface there, and
+/// whether it may be one point of a boundary two primitives share (always, for quadric patches;
+/// for Bézier pieces only a hit on its piece's boundary).
+struct LineHit {
+  double s;
+  bool entering;
+  bool shared = true;
+  /// Vertices of the triangles the primitive stands for (up to two), ~0u where unknown.
+  std::array<uint32_t, 6> vertices{~0u, ~0u, ~0u, ~0u, ~0u, ~0u};
+  Vec3 point = Vec3::Zero();  ///< where the line meets the primitive
+};
+
+/// Crossings of a line with patches or Bézier pieces among its hits (sorted here by s), as
+/// crackRate counts them; `positions` are the mesh's vertices that LineHit::vertices index.
+///
+/// A cluster of hits closer than `mergeDistance` is one place where the line meets the
+/// surface. Its hits are too close to order, so only their balance counts: a line through a
+/// shared boundary enters every patch there (or a fold, a bridge and its patches enter twice
+/// and leave once), which is one crossing; a cluster that enters as often as it leaves touches
+/// the surface, which is two.
+///
+/// Only hits that may lie on a shared boundary join a cluster's balance: an interior hit of a
+/// Bézier piece is a crossing of its own however close another is (two sheets of a surface that
+/// folds over itself near an edge, where the data bends it sharply, meet a line 1e-8 apart).
+/// And a cluster's balance is taken per group of hits every two of which may share a boundary:
+/// their triangles share an edge (or are one), or they share one vertex and both hits lie within
+/// 10 × `mergeDistance` of it. Primitives of triangles far apart on the mesh share no boundary,
+/// so their hits are separate crossings however close (two components of a mesh that pass
+/// through each other cross where a line meets both within the merge distance: `bones`); so are
+/// two patches around one vertex that a line meets far from it, even where a third patch shares
+/// an edge with each.
+size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance,
+                      const std::vector<Vec3>& positions);
 
 }  // namespace quadtri

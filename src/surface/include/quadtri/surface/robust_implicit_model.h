@@ -54,8 +54,9 @@ namespace quadtri {
 ///
 /// Where the fit fails those checks or does not cover its triangle (normals that no quadric
 /// through the corners follows: folds, averaged normals across sharp edges), the patch falls
-/// back, keeping as much as it can: the pencil's graph member, then fits to corner normals
-/// blended towards the face normal (corners still exact), and last the triangle's own plane.
+/// back, keeping as much as it can: the pencil's graph member, then other members q + μL²
+/// (corners and corner normals kept), then fits to corner normals blended towards the face
+/// normal (corners still exact), and last the triangle's own plane.
 /// evaluate(t, u, v) projects the thesis' parametric patch f_p(u, v) onto the quadric along a
 /// direction that lies in the edge plane on each edge (the start point moved into that plane),
 /// so the boundary it reports is the clipped boundary.
