@@ -222,7 +222,8 @@ TEST(ConversionWarning, NamesTheMeshModelAndBothFigures) {
   const auto sphere = std::make_shared<const TriangleMesh>(makeBuiltin("icosahedron").mesh);
   for (const std::string& name : modelNames())
     EXPECT_FALSE(conversionWarning(*makeModel(name, sphere), "ico")) << name;
-  EXPECT_FALSE(conversionWarning(*makeModel("shading", mesh), "grid.obj"));
+  for (const char* name : {"flat", "shading", "shading-offset"})
+    EXPECT_FALSE(conversionWarning(*makeModel(name, mesh), "grid.obj")) << name;
 }
 
 }  // namespace

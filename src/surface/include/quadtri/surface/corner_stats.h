@@ -61,7 +61,8 @@ constexpr double kConversionWarningRate = 0.01;
 /// One line for a freshly built model that folds at more than kConversionWarningRate of its
 /// consistent corners or falls back on more than kConversionWarningRate of its patches, with
 /// both figures, e.g. "bunny.obj: quadric-param folds at 2.31% of consistent corners (690 of
-/// 29,868) and falls back on 0.1% of patches (10 of 9,956)"; nullopt otherwise. `mesh` names the
+/// 29,868) and falls back on 0.1% of patches (10 of 9,956)"; nullopt otherwise, and always for
+/// the models that keep the mesh's triangles (Representation::InputTriangles). `mesh` names the
 /// mesh in the line.
 std::optional<std::string> conversionWarning(const SurfaceModel& model, std::string_view mesh);
 
