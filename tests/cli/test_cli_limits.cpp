@@ -120,8 +120,8 @@ TEST(CliLimits, MaxMemoryRefusesMeshesWhoseModelWouldNotFit) {
   fs::remove_all(dir);
 }
 
-TEST(CliLimits, RenderRefusesAnImageOrMeshOverMaxMemory) {
-  const fs::path dir = freshDir("render-memory");
+// tri.obj (one triangle) and scene.xml rendering it at $res² pixels (default 64), 1 spp.
+void writeTriangleScene(const fs::path& dir) {
   std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(dir / "scene.xml") << R"(<scene version="3.0.0">
   <default name="res" value="64"/>
@@ -135,6 +135,11 @@ TEST(CliLimits, RenderRefusesAnImageOrMeshOverMaxMemory) {
   <shape type="obj"><string name="filename" value="tri.obj"/></shape>
 </scene>
 )";
+}
+
+TEST(CliLimits, RenderRefusesAnImageOrMeshOverMaxMemory) {
+  const fs::path dir = freshDir("render-memory");
+  writeTriangleScene(dir);
   // 32768² pixels (the most the film takes): 47 GiB of film, refused before it is allocated.
   CliProcess film({"render", (dir / "scene.xml").string(), "-D", "res=32768", "--max-memory", "1G",
                    "-o", (dir / "out.exr").string()},
@@ -162,21 +167,12 @@ TEST(CliLimits, RenderRefusesAnImageOrMeshOverMaxMemory) {
 // 1 and writes nothing; commands that write no image (convert) do not need it.
 TEST(CliLimits, RenderWithoutTheImageModuleSaysWhereItLookedAndWritesNothing) {
   const fs::path dir = freshDir("image-module");
-  std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  std::ofstream(dir / "scene.xml") << R"(<scene version="3.0.0">
-  <sensor type="perspective">
-    <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
-    <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
-  </sensor>
-  <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>
-  <shape type="obj"><string name="filename" value="tri.obj"/></shape>
-</scene>
-)";
+  writeTriangleScene(dir);
   const fs::path missing = dir / "nowhere" / "libquadtri_image.so";
   ::setenv("QUADTRI_IMAGE_MODULE", missing.c_str(), 1);
-  CliProcess render({"render", (dir / "scene.xml").string(), "-o", (dir / "out.png").string()}, dir,
-                    "render");
+  CliProcess render(
+      {"render", (dir / "scene.xml").string(), "-D", "res=8", "-o", (dir / "out.png").string()},
+      dir, "render");
   CliProcess convert({"convert", (dir / "tri.obj").string(), "--model", "quadric-param", "-o",
                       (dir / "tri.ply").string()},
                      dir, "convert");

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "fixtures/temp_files.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/mesh/mesh_reader.h"
@@ -20,16 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class MeshLoad : public ::testing::Test {
+class MeshLoad : public fixtures::TempFiles {
  protected:
-  fs::path dir = fs::temp_directory_path() / ("quadtri-mesh-load-" + std::to_string(::getpid()));
-  void SetUp() override { fs::create_directories(dir); }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path path = dir / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
+  MeshLoad() : TempFiles("mesh-load") {}
 };
 
 std::string bits(const Vec3& v) {

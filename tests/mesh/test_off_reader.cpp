@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "fixtures/temp_files.h"
 #include "quadtri/io/csv.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/mesh_io.h"
@@ -26,16 +27,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class OffReader : public ::testing::Test {
+class OffReader : public fixtures::TempFiles {
  protected:
-  fs::path dir = fs::temp_directory_path() / ("quadtri-off-reader-" + std::to_string(::getpid()));
-  void SetUp() override { fs::create_directories(dir); }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path path = dir / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
+  OffReader() : TempFiles("off-reader") {}
   // loadMesh's error on the file, which must be refused.
   std::string refusal(const std::string& name, const std::string& text, bool checked = true) {
     const fs::path path = write(name, text);
