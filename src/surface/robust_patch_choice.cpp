@@ -64,6 +64,13 @@ bool addSquare(const QuadricCoeffs& q, const QuadricCoeffs& pencil, double lambd
 constexpr double kMaxRise = 0.5;
 constexpr double kMaxArcRise = 2.0;
 
+// A sliver's cell is capped at a corner sharper than kCapBelowDeg whose two edge planes meet in
+// a line within asin(0.5) = 30° of the triangle's plane; the cap lies kCapOffset mean edges
+// beyond the corner.
+constexpr double kCapBelowDeg = 15.0;
+constexpr double kCapBelowSine = 0.5;
+constexpr double kCapOffset = 1e-3;
+
 }  // namespace
 
 bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double reach,
@@ -113,6 +120,36 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
   const double allowed = std::max(kMaxRise * altitude, kMaxArcRise * sagitta);
   if (!(std::max(hmax, -hmin) <= allowed)) return false;
 
+  // A cap at a sharp corner whose two edge planes meet in a line close to the triangle's
+  // plane: their wedge there runs on past the corner, nearly along the triangle, over the
+  // cells of the triangles around that corner, where the surface the patch continues leaves
+  // the slab. The cap (through the corner, across the corner's bisector) ends the cell there.
+  int planeCount = 5;
+  {
+    int corner = -1;
+    double shallowest = kCapBelowSine;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& v = m.corner(t, k);
+      if (!(angleDegrees(m.corner(t, (k + 1) % 3) - v, m.corner(t, (k + 2) % 3) - v) <
+            kCapBelowDeg))
+        continue;
+      const Vec3 line = patch.planes[k].head<3>().cross(patch.planes[(k + 2) % 3].head<3>());
+      const double sine = line.norm() > 1e-12 ? std::abs(line.normalized().dot(n)) : 0.0;
+      if (sine < shallowest) {
+        shallowest = sine;
+        corner = k;
+      }
+    }
+    if (corner >= 0) {
+      const Vec3& v = m.corner(t, corner);
+      const Vec3 inward = safeNormalized(safeNormalized(m.corner(t, (corner + 1) % 3) - v, n) +
+                                             safeNormalized(m.corner(t, (corner + 2) % 3) - v, n),
+                                         n);
+      patch.planes[5] << inward, -inward.dot(v) + kCapOffset * scale;
+      planeCount = 6;
+    }
+  }
+
   // The slab around the sampled heights, as tight as the exact checks below allow (a larger
   // cell only makes the gradient check harder): grown fourfold while the sheet leaves it.
   for (int attempt = 0; attempt < 5; ++attempt) {
@@ -120,8 +157,8 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
     const double lo = hmin - slab, hi = hmax + slab;
     patch.planes[3] << n, -n.dot(centre) - lo;
     patch.planes[4] << -n, n.dot(centre) + hi;
-    patch.planeCount = 5;
-    cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + 5}, tolerance);
+    patch.planeCount = planeCount;
+    cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + planeCount}, tolerance);
     if (cell.vertices.size() < 4) return false;
     // One sheet, a graph over the triangle's plane: orientation·∇q·n is positive wherever the
     // quadric vanishes in the cell. (Along a line parallel to n a quadric's two roots have
@@ -138,7 +175,7 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
       const double offset = -patch.orientation * Vec3(q[6], q[7], q[8]).dot(n) + 1e-3 * gmax;
       bool folded = false;
       if (slope.norm() > 1e-12 * gmax) {
-        std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + 5);
+        std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + planeCount);
         planes.push_back(Vec4(slope.x(), slope.y(), slope.z(), offset) / slope.norm());
         const ConvexCell turned = makeConvexCell(planes, tolerance);
         folded = !turned.empty() && !quadricBoundsInCell(q, turned).empty();

@@ -396,6 +396,22 @@ TEST(RobustFallback, FitsThatFoldOnlyWhereTheyAreNotKeepTheirNormals) {
   EXPECT_EQ(model.fallbackCount(), 4u);
 }
 
+TEST(RobustFallback, SliversAlongACurvedDirectionKeepTheirFits) {
+  // A thin torus cut into 8 × 16 quads: each triangle is a sliver along the ring. At a sliver's
+  // sharp corner its two long edge planes meet in a line close to the triangle's plane, so the
+  // cell ran on past the corner, along the ring, where the surface leaves the slab: 80 of the
+  // 256 patches fell back. A cap across the corner's bisector ends the cell there: 48.
+  const auto mesh =
+      std::make_shared<const TriangleMesh>(parseBuiltinSpec("torus:1,0.1,8,16")->mesh);
+  const RobustImplicitModel model(mesh);
+  EXPECT_EQ(model.flatCount(), 0u);
+  EXPECT_LE(model.fallbackCount(), 48u);
+  size_t capped = 0;
+  for (const QuadricPatch& p : model.quadricPatches()) capped += p.planeCount == 6;
+  EXPECT_GT(capped, 0u);
+  EXPECT_EQ(crackedLines(mesh, 100000), 0u);
+}
+
 TEST(RobustFallback, FewPatchesOfTheGenus2SurfaceFallBack) {
   // Averaged normals on the genus-2 surface's irregular mesh (5,684 triangles, slivers): one
   // patch falls back to its plane (14 before the tight slabs), under 2% are blended.
