@@ -25,9 +25,9 @@ test: build
 # -O1 and line tables only: about half the build time of -O2 -g, the same reports.
 # SANITIZE_EXCLUDE: a ctest -E pattern of tests the sanitizer run leaves to `make test`: the
 # convergence studies (ObservedOrders: five models converted and measured on four refinement
-# levels of two shapes, the code of other tests at larger sizes, 70 s each under ASan) and the 1-against-2-thread bitwise
-# comparison (ParallelConversion: every model twice on large meshes, 110 s; make tsan is the
-# check for threads). Together about a third of the sanitizer run's test time.
+# levels of two shapes, the code of other tests at larger sizes, 70 s each under ASan) and the
+# 1-against-2-thread bitwise comparison (ParallelConversion: every model twice on large meshes,
+# 110 s; make tsan is the check for threads). Together a third of the sanitizer tests' time.
 SANITIZE_EXCLUDE ?= ^(ObservedOrders|ParallelConversion)\.
 SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DQUADTRI_FUZZ=ON -DQUADTRI_BENCH=OFF
 sanitize: setup
