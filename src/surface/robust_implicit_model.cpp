@@ -18,18 +18,19 @@ struct SharedEdge {
   Vec4 plane = Vec4::Zero();
   Vec3 arcMidpoint = Vec3::Zero();
   Vec3 direction = Vec3::UnitZ();
+  bool crease = false;  ///< the sides' corner normals differ at either end
 };
 
 // Unit shading normal at vertex `which` of the edge, from what both sides share: the corner
-// normal itself, or the normalised mean where a crease splits it.
-Vec3 sharedNormal(const TriangleMesh& mesh, const Edge& edge, uint32_t which) {
+// normal itself, or the normalised mean where a crease splits it (`split` set then).
+Vec3 sharedNormal(const TriangleMesh& mesh, const Edge& edge, uint32_t which, bool& split) {
   const auto cornerOf = [&](uint32_t t, uint8_t k) {
     return mesh.triangles[t][k] == which ? int(k) : (k + 1) % 3;
   };
   const auto [t0, k0] = edge.sides.front();
   const Vec3 first = mesh.cornerNormal(t0, cornerOf(t0, k0));
   Vec3 sum = Vec3::Zero();
-  bool split = false;
+  split = false;
   for (auto [t, k] : edge.sides) {
     const Vec3 n = mesh.cornerNormal(t, cornerOf(t, k));
     split |= n != first;
@@ -41,9 +42,11 @@ Vec3 sharedNormal(const TriangleMesh& mesh, const Edge& edge, uint32_t which) {
 SharedEdge sharedEdge(const TriangleMesh& mesh, const Edge& edge) {
   const Vec3& va = mesh.positions[edge.a];
   const Vec3& vb = mesh.positions[edge.b];
-  const Vec3 na = sharedNormal(mesh, edge, edge.a);
-  const Vec3 nb = sharedNormal(mesh, edge, edge.b);
+  bool splitA = false, splitB = false;
+  const Vec3 na = sharedNormal(mesh, edge, edge.a, splitA);
+  const Vec3 nb = sharedNormal(mesh, edge, edge.b, splitB);
   SharedEdge out;
+  out.crease = splitA || splitB;
   out.arcMidpoint = edgeArcMidpoint(va, na, vb, nb);
   const Vec3 e = vb - va;
   const double len = e.norm();
@@ -345,6 +348,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       const SharedEdge& edge = edges[topo.edgeOf[t][k]];
       frame.edgeDirection[k] = edge.direction;
       frame.edgePlane[k] = edge.plane;
+      frame.crease[k] = edge.crease;
       // Inside is the side of the opposite corner; the neighbour across the edge gets the
       // same plane negated (exactly).
       const Vec3& opposite = m.corner(t, (k + 2) % 3);

@@ -71,6 +71,36 @@ constexpr double kCapBelowDeg = 15.0;
 constexpr double kCapBelowSine = 0.5;
 constexpr double kCapOffset = 1e-3;
 
+// Whether the segment o + s·d, s in [0, length], enters or leaves the cell through the plane
+// of a crease edge at a point between the sheet and the triangle's plane: there the edge's
+// bridge, not the sheet, is the surface the segment meets.
+bool crossesCreaseBridge(const QuadricPatch& patch, const std::array<bool, 3>& crease,
+                         const Vec3& o, const Vec3& d, double length) {
+  double s0 = 0.0, s1 = length;
+  int in = -1, out = -1;
+  for (int k = 0; k < patch.planeCount; ++k) {
+    const double slope = patch.planes[k].head<3>().dot(d);
+    const double value = patch.planes[k].head<3>().dot(o) + patch.planes[k][3];
+    if (slope == 0.0) {
+      if (value < 0.0) return false;
+      continue;
+    }
+    const double s = -value / slope;
+    if (slope > 0.0 && s > s0) {
+      s0 = s;
+      in = k;
+    } else if (slope < 0.0 && s < s1) {
+      s1 = s;
+      out = k;
+    }
+  }
+  if (!(s0 < s1)) return false;
+  const auto bridged = [&](int k, double s) {
+    return k >= 0 && k < 3 && crease[size_t(k)] && betweenSheetAndBase(patch, o + s * d, k);
+  };
+  return bridged(in, s0) || bridged(out, s1);
+}
+
 }  // namespace
 
 bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double reach,
@@ -201,14 +231,17 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
     if (!(frame.reach <= reach)) return false;
     patch.bounds.inflate(1e-7 * scale + tolerance);
     // Covers its triangle: lines along the face normal through the triangle's inner lattice
-    // points meet it within a mean edge length.
+    // points meet it within a mean edge length, or, next to a crease, meet the bridge on the
+    // crease's edge plane (the two sides' arcs cross that plane: DESIGN §3.7 (h3)).
     constexpr int level = 6;
     for (int j = 1; j < level; ++j)
       for (int i = 1; i + j < level; ++i) {
         const double u = double(i) / level, v = double(j) / level;
         const Vec3 x = (1.0 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);
         double hit;
-        if (!intersectQuadricPatch(patch, x - scale * n, n, 0.0, 2.0 * scale, hit)) return false;
+        if (!intersectQuadricPatch(patch, x - scale * n, n, 0.0, 2.0 * scale, hit) &&
+            !crossesCreaseBridge(patch, frame.crease, x - scale * n, n, 2.0 * scale))
+          return false;
       }
     return true;
   }

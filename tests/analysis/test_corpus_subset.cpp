@@ -11,6 +11,7 @@
 
 #include "quadtri/analysis/metrics.h"
 #include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/robust_implicit_model.h"
 
 namespace quadtri {
 namespace {
@@ -106,6 +107,27 @@ TEST_P(CorpusSubset, G1ModelHoldsItsTargets) {
   EXPECT_EQ(*m.crackRate, 0.0) << GetParam();
   EXPECT_LT(*m.c0Gap, 1e-9) << GetParam();
   EXPECT_LT(*m.c1AngleSmoothDeg, kG1ToleranceDeg) << GetParam();
+}
+
+// npm's teapot (992 triangles, no file normals: crease-split at 30°). Its rim is a ring of
+// slivers along a crease, cone data that the fits meet to within 0.08°. Each sliver's sheet follows
+// its own side's normals and so crosses the crease's edge plane (the two sides' arcs lie across
+// it), where lines along the face normal near that edge meet the crease's bridge rather than the
+// sheet: 12 rim patches fell back for the coverage check before it counted such lines (30 of 992
+// patches, 3.0%; 17 after, 1.7%, under the 2% the organic meshes are held to).
+TEST(CorpusTeapot, RimSliversAlongTheCreaseKeepTheirFits) {
+  const std::optional<fs::path> root = corpus();
+  if (!root) GTEST_SKIP() << "QUADTRI_CORPUS is not set";
+  const fs::path file = *root / "npm/teapot.obj";
+  ASSERT_TRUE(fs::exists(file)) << file << " is missing: run scripts/fetch-corpus.sh";
+  const auto mesh = std::make_shared<const TriangleMesh>(loadMesh(file));
+  ASSERT_EQ(mesh->triangleCount(), 992u);
+  const RobustImplicitModel model(mesh);
+  for (size_t t : {26, 27, 34, 35, 42, 43, 50, 51, 58, 59, 66, 67}) {
+    EXPECT_FALSE(model.fellBack(t)) << t;
+    EXPECT_LT(model.cornerNormalErrorDeg(t), 0.1) << t;
+  }
+  EXPECT_LT(double(model.fallbackCount()), 0.02 * double(mesh->triangleCount()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, CorpusSubset, ::testing::ValuesIn(kSubset),

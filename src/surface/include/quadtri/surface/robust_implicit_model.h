@@ -96,6 +96,8 @@ class RobustImplicitModel final : public SurfaceModel {
     QuadraticPatch parametric;
     std::array<Vec3, 3> edgeDirection;
     std::array<Vec4, 3> edgePlane;
+    /// The edge's two sides have different corner normals at an end (a crease splits them).
+    std::array<bool, 3> crease{};
     Vec3 faceNormal;
     double cornerNormalErrorDeg = 0.0;
     double blend = 0.0;  ///< normals blended this far towards the face normal (1: flat)
