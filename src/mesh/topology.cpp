@@ -4,6 +4,7 @@
 #include <atomic>
 #include <mutex>
 
+#include "quadtri/math/error.h"
 #include "quadtri/math/parallel.h"
 
 namespace quadtri {
@@ -11,30 +12,56 @@ namespace quadtri {
 MeshTopology::MeshTopology(const TriangleMesh& mesh) {
   const size_t triangles = mesh.triangles.size();
   const size_t halves = 3 * triangles;
-  // Half-edge h = 3t + k, keyed by its undirected edge; sorting (key, h) pairs, all distinct,
-  // gives one order whatever the thread count.
-  struct Half {
-    uint64_t key;
-    uint32_t h;
-    bool operator<(const Half& o) const { return key != o.key ? key < o.key : h < o.h; }
+  const size_t vertices = mesh.positions.size();
+  // Half-edge h = 3t + k joins vertices lower(h) < upper(h) (or two equal ones). Ordered by
+  // (lower, upper, h) the half-edges of one edge are adjacent. A counting sort on lower puts
+  // them in buckets in increasing h; each bucket (about six half-edges on a closed mesh) is then
+  // ordered by upper, stably. The order is the one sorting (lower, upper, h) gives, whatever
+  // the thread count, in linear time and without a key array.
+  const auto ends = [&](size_t h) {
+    const Tri& tri = mesh.triangles[h / 3];
+    const int k = int(h % 3);
+    const uint32_t a = tri[k], b = tri[(k + 1) % 3];
+    return a < b ? std::pair(a, b) : std::pair(b, a);
   };
-  std::vector<Half> sorted(halves);
-  parallelFor(size_t(0), triangles, [&](size_t t) {
-    for (int k = 0; k < 3; ++k) {
-      uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-      if (a > b) std::swap(a, b);
-      sorted[3 * t + k] = Half{(uint64_t(a) << 32) | b, uint32_t(3 * t + k)};
-    }
-  });
-  parallelSort(sorted.begin(), sorted.end());
+  std::vector<uint32_t> start(vertices + 1, 0);
+  for (size_t h = 0; h < halves; ++h) {
+    const auto [a, b] = ends(h);
+    if (b >= vertices)
+      fail("triangle {}: vertex index {} is out of range (the mesh has {} vertices)", h / 3, b,
+           vertices);
+    ++start[a + 1];
+  }
+  for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> order(halves);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t h = 0; h < halves; ++h) order[fill[ends(h).first]++] = uint32_t(h);
+  }
+  parallelForRange(tbb::blocked_range<size_t>(0, vertices, 4096),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     for (size_t v = range.begin(); v != range.end(); ++v) {
+                       uint32_t* first = order.data() + start[v];
+                       uint32_t* last = order.data() + start[v + 1];
+                       // Insertion sort: stable, and the buckets are small.
+                       for (uint32_t* i = first + 1; i < last; ++i) {
+                         const uint32_t h = *i;
+                         const uint32_t upper = ends(h).second;
+                         uint32_t* j = i;
+                         for (; j > first && ends(*(j - 1)).second > upper; --j) *j = *(j - 1);
+                         *j = h;
+                       }
+                     }
+                   });
   // leader[h]: the first half-edge (least h) of h's edge. Edges are numbered by their leader.
   std::vector<uint32_t> leader(halves);
   std::vector<uint32_t> groupSize(halves, 0);
   for (size_t i = 0; i < halves;) {
+    const auto key = ends(order[i]);
     size_t j = i + 1;
-    while (j < halves && sorted[j].key == sorted[i].key) ++j;
-    const uint32_t first = sorted[i].h;
-    for (size_t g = i; g < j; ++g) leader[sorted[g].h] = first;
+    while (j < halves && ends(order[j]) == key) ++j;
+    const uint32_t first = order[i];
+    for (size_t g = i; g < j; ++g) leader[order[g]] = first;
     groupSize[first] = uint32_t(j - i);
     i = j;
   }

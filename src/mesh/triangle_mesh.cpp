@@ -18,6 +18,13 @@ Vec3 TriangleMesh::cornerNormal(size_t t, int k) const {
   return normals[normalIndices[t][k]];
 }
 
+Vec3 TriangleMesh::unitCornerNormal(size_t t, int k) const {
+  const Vec3 n = cornerNormal(t, k);
+  const double len = n.norm();
+  if (len > 0.0 && std::isfinite(len)) return n / len;
+  return faceNormal(t);
+}
+
 Bounds3 TriangleMesh::bounds() const {
   Bounds3 b;
   for (const Vec3& p : positions) b.extend(p);

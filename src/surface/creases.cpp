@@ -75,8 +75,8 @@ EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
           for (auto [t, k] : edge.sides) {
             const bool forward = mesh.triangles[t][k] == edge.a;
             const int ka = forward ? k : (k + 1) % 3, kb = forward ? (k + 1) % 3 : k;
-            na.push_back(safeNormalized(mesh.cornerNormal(t, ka), mesh.faceNormal(t)));
-            nb.push_back(safeNormalized(mesh.cornerNormal(t, kb), mesh.faceNormal(t)));
+            na.push_back(mesh.unitCornerNormal(t, ka));
+            nb.push_back(mesh.unitCornerNormal(t, kb));
           }
           const Vec3 chord = mesh.positions[edge.b] - mesh.positions[edge.a];
           const EdgeEnd a = classifyEnd(na, chord), b = classifyEnd(nb, chord);

@@ -13,7 +13,7 @@ LocalTriangle localTriangle(const TriangleMesh& mesh, size_t t) {
   LocalTriangle tri;
   for (int k = 0; k < 3; ++k) {
     tri.p[k] = mesh.corner(t, k);
-    tri.n[k] = safeNormalized(mesh.cornerNormal(t, k), mesh.faceNormal(t));
+    tri.n[k] = mesh.unitCornerNormal(t, k);
   }
   return tri;
 }

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/local_patches.h"
@@ -48,7 +49,8 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceMode
   curvatures_.resize(m.triangleCount());
   patches_.resize(m.triangleCount());
   std::vector<uint8_t> gaveUp(m.triangleCount(), 0);
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
+  // Each triangle writes only its own slots: the result does not depend on the thread count.
+  parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
     QuadraticPatch& patch = patches_[t];
     for (int k = 0; k < 3; ++k) {
@@ -69,7 +71,7 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceMode
       // x(t) = x0 + (Δx − c) t + c t² in Bernstein form: control point x0 + (Δx − c)/2.
       patch.b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
     }
-  }
+  });
   setFallbacks(std::move(gaveUp));
 }
 

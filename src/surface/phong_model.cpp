@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/local_patches.h"
 
@@ -14,7 +15,8 @@ PhongModel::PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha)
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
   patches_.resize(m.triangleCount());
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
+  // Each triangle writes only its own patch: the result does not depend on the thread count.
+  parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
     QuadraticPatch& patch = patches_[t];
     for (int i = 0; i < 3; ++i) {
@@ -27,7 +29,7 @@ PhongModel::PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha)
       patch.v[i] = tri.p[i];
       patch.b[i] = 0.5 * (tri.p[i] + tri.p[j]) - (0.5 * alpha_) * (removedI - removedJ);
     }
-  }
+  });
 }
 
 SurfacePoint PhongModel::evaluate(size_t t, double u, double v) const {

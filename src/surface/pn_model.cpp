@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/local_patches.h"
 
@@ -115,11 +116,12 @@ Vec3 PnPatch::normalField(double u, double v) const {
 PnModel::PnModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  patches_.reserve(m.triangleCount());
-  for (size_t t = 0; t < m.triangleCount(); ++t) {
+  patches_.resize(m.triangleCount());
+  // Each triangle writes only its own patch: the result does not depend on the thread count.
+  parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
-    patches_.push_back(PnPatch::fromCorners(tri.p, tri.n, &ends[t]));
-  }
+    patches_[t] = PnPatch::fromCorners(tri.p, tri.n, &ends[t]);
+  });
 }
 
 SurfacePoint PnModel::evaluate(size_t t, double u, double v) const {

@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <random>
 
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/mesh_io.h"
@@ -12,6 +14,57 @@
 
 namespace quadtri {
 namespace {
+
+// The adjacency against a map from each undirected edge to its sides in half-edge order, on a
+// random soup with repeated, degenerate (a == a) and non-manifold edges: edges numbered by their
+// first side, sides in triangle order, edgeOf pointing back.
+TEST(Topology, MatchesAMapOfEdgesOnARandomSoup) {
+  std::mt19937 rng(7);
+  TriangleMesh m;
+  const uint32_t vertices = 40;
+  for (uint32_t v = 0; v < vertices; ++v) m.positions.emplace_back(v, v * v % 7, v % 3);
+  std::uniform_int_distribution<uint32_t> pick(0, vertices - 1);
+  for (int t = 0; t < 400; ++t) m.triangles.push_back({pick(rng), pick(rng), pick(rng)});
+  std::map<std::pair<uint32_t, uint32_t>, std::vector<EdgeSide>> reference;
+  std::vector<std::pair<uint32_t, uint32_t>> firstSeen;
+  for (uint32_t t = 0; t < m.triangles.size(); ++t)
+    for (uint8_t k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      const auto key = std::minmax(a, b);
+      auto& sides = reference[{key.first, key.second}];
+      if (sides.empty()) firstSeen.emplace_back(key.first, key.second);
+      sides.emplace_back(t, k);
+    }
+  const MeshTopology topo(m);
+  ASSERT_EQ(topo.edges.size(), firstSeen.size());
+  size_t nonManifold = 0;
+  for (size_t e = 0; e < topo.edges.size(); ++e) {
+    const Edge& edge = topo.edges[e];
+    EXPECT_EQ(std::make_pair(edge.a, edge.b), firstSeen[e]) << e;
+    const std::vector<EdgeSide>& sides = reference[firstSeen[e]];
+    ASSERT_EQ(edge.sides.size(), sides.size()) << e;
+    for (size_t i = 0; i < sides.size(); ++i) {
+      EXPECT_EQ(edge.sides[i], sides[i]) << e;
+      EXPECT_EQ(topo.edgeOf[sides[i].first][sides[i].second], e);
+    }
+    nonManifold += sides.size() > 2;
+  }
+  EXPECT_EQ(topo.nonManifoldEdgeCount(), nonManifold);
+  EXPECT_GT(nonManifold, 0u);  // the soup does exercise shared edges
+}
+
+TEST(Topology, AnIndexPastTheVerticesIsAnError) {
+  TriangleMesh m;
+  m.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  m.triangles = {{0, 1, 2}, {2, 1, 3}};
+  try {
+    const MeshTopology topo(m);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 1: vertex index 3"), std::string::npos)
+        << e.what();
+  }
+}
 
 TEST(Shapes, PolyhedraAreClosedAndOnTheUnitSphere) {
   for (const char* name :

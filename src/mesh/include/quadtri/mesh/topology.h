@@ -37,8 +37,9 @@ struct Edge {
   EdgeSides sides;
 };
 
-/// Built once per mesh from one sorted array of half-edges (no hash map, no allocation per
-/// edge); edges are numbered in the order of their first side. Movable, not copyable (the
+/// Built once per mesh from one array of half-edges ordered by their edge (a counting sort on
+/// the lower vertex, in linear time; no hash map, no allocation per edge); edges are numbered
+/// in the order of their first side. Movable, not copyable (the
 /// edges point into its own array of sides).
 struct MeshTopology {
   std::vector<Edge> edges;

@@ -67,6 +67,9 @@ struct TriangleMesh {
   const Vec3& corner(size_t t, int k) const { return positions[triangles[t][k]]; }
   /// Shading normal at corner k of triangle t (the face normal when the mesh has none).
   Vec3 cornerNormal(size_t t, int k) const;
+  /// cornerNormal normalised, or faceNormal where it has no length: what safeNormalized(
+  /// cornerNormal(t, k), faceNormal(t)) gives, without computing the face normal every time.
+  Vec3 unitCornerNormal(size_t t, int k) const;
   /// Unit geometric normal (v1-v0)×(v2-v0), or +z for a zero-area triangle.
   Vec3 faceNormal(size_t t) const;
   /// Twice the triangle's area vector, (v1-v0)×(v2-v0).
