@@ -1,6 +1,7 @@
 #include "quadtri/surface/creases.h"
 
 #include <Eigen/QR>
+#include <atomic>
 #include <cmath>
 
 #include "quadtri/math/parallel.h"
@@ -62,39 +63,65 @@ EdgeEnds edgeEnds(const TriangleMesh& mesh) {
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
   EdgeEnds out(mesh.triangleCount());
   if (!mesh.hasNormals()) return out;
-  // Each edge writes only its own sides' slots: edges are independent, and the result does not
-  // depend on the thread count. The normals' buffers are reused within a block of edges.
-  parallelForRange(
-      tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
-      [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<Vec3> na, nb;
-        for (size_t e = range.begin(); e != range.end(); ++e) {
-          const Edge& edge = topo.edges[e];
-          na.clear();
-          nb.clear();
-          for (auto [t, k] : edge.sides) {
-            const bool forward = mesh.triangles[t][k] == edge.a;
-            const int ka = forward ? k : (k + 1) % 3, kb = forward ? (k + 1) % 3 : k;
-            na.push_back(mesh.unitCornerNormal(t, ka));
-            nb.push_back(mesh.unitCornerNormal(t, kb));
-          }
-          const Vec3 chord = mesh.positions[edge.b] - mesh.positions[edge.a];
-          const EdgeEnd a = classifyEnd(na, chord), b = classifyEnd(nb, chord);
-          for (auto [t, k] : edge.sides) {
-            const bool forward = mesh.triangles[t][k] == edge.a;
-            out[t][k] = forward ? std::array<EdgeEnd, 2>{a, b} : std::array<EdgeEnd, 2>{b, a};
-          }
-        }
-      });
+  // The ends of edge e from the corner normals of its sides; `scratch` holds the normals.
+  const auto classify = [&](size_t e, std::vector<Vec3>& na, std::vector<Vec3>& nb) {
+    const Edge& edge = topo.edges[e];
+    na.clear();
+    nb.clear();
+    for (auto [t, k] : edge.sides) {
+      const bool forward = mesh.triangles[t][k] == edge.a;
+      const int ka = forward ? k : (k + 1) % 3, kb = forward ? (k + 1) % 3 : k;
+      na.push_back(mesh.unitCornerNormal(t, ka));
+      nb.push_back(mesh.unitCornerNormal(t, kb));
+    }
+    const Vec3 chord = mesh.positions[edge.b] - mesh.positions[edge.a];
+    return std::array<EdgeEnd, 2>{classifyEnd(na, chord), classifyEnd(nb, chord)};
+  };
+  // Pass 1 marks the edges with an end that is not Shared and their triangles; pass 2 stores
+  // those triangles' ends. Each edge writes only its own slots, so neither pass depends on the
+  // thread count. The normals' buffers are reused within a block of edges.
+  std::vector<uint8_t> splitEdge(topo.edges.size(), 0);
+  std::vector<std::atomic<uint8_t>> splitTriangle(mesh.triangleCount());
+  parallelForRange(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     std::vector<Vec3> na, nb;
+                     for (size_t e = range.begin(); e != range.end(); ++e) {
+                       const auto ends = classify(e, na, nb);
+                       if (ends[0].kind == EdgeEnd::Kind::Shared &&
+                           ends[1].kind == EdgeEnd::Kind::Shared)
+                         continue;
+                       splitEdge[e] = 1;
+                       for (auto [t, k] : topo.edges[e].sides)
+                         splitTriangle[t].store(1, std::memory_order_relaxed);
+                     }
+                   });
+  size_t stored = 0;
+  for (const auto& flag : splitTriangle) stored += flag.load(std::memory_order_relaxed);
+  if (stored == 0) return out;
+  out.slot_.assign(mesh.triangleCount(), EdgeEnds::kShared);
+  out.stored_.resize(stored);
+  uint32_t next = 0;
+  for (size_t t = 0; t < mesh.triangleCount(); ++t)
+    if (splitTriangle[t].load(std::memory_order_relaxed)) out.slot_[t] = next++;
+  parallelForRange(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     std::vector<Vec3> na, nb;
+                     for (size_t e = range.begin(); e != range.end(); ++e) {
+                       if (!splitEdge[e]) continue;
+                       const auto [a, b] = classify(e, na, nb);
+                       const Edge& edge = topo.edges[e];
+                       for (auto [t, k] : edge.sides) {
+                         const bool forward = mesh.triangles[t][k] == edge.a;
+                         out.stored_[out.slot_[t]][k] = forward ? std::array<EdgeEnd, 2>{a, b}
+                                                                : std::array<EdgeEnd, 2>{b, a};
+                       }
+                     }
+                   });
   return out;
 }
 
 bool hasSplitEdges(const EdgeEnds& ends) {
-  for (const auto& triangle : ends)
-    for (const auto& edge : triangle)
-      for (const EdgeEnd& end : edge)
-        if (end.kind != EdgeEnd::Kind::Shared) return true;
-  return false;
+  return ends.anySplit();
 }
 
 Vec3 creaseControlPoint(const Vec3& vaIn, const EdgeEnd& eaIn, const Vec3& naIn, const Vec3& vbIn,

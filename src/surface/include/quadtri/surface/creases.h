@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "quadtri/mesh/triangle_mesh.h"
@@ -35,12 +36,37 @@ struct EdgeEnd {
   Vec3 tangentPart(const Vec3& e, const Vec3& own) const;
 };
 
+struct MeshTopology;
+
 /// ends[t][k] = {end at corner k, end at corner k+1} of local edge k of triangle t, computed
 /// once per mesh edge from the corner normals of all its sides (compared by value), so both
-/// sides read identical data.
-using EdgeEnds = std::vector<std::array<std::array<EdgeEnd, 2>, 3>>;
+/// sides read identical data. Stored sparsely: a smooth mesh has no end but Shared ones, so
+/// only triangles with another kind of end keep their six ends (4 bytes per triangle besides,
+/// where a dense array took 336).
+class EdgeEnds {
+ public:
+  using Triangle = std::array<std::array<EdgeEnd, 2>, 3>;
+  /// `triangles` triangles whose ends are all Shared.
+  explicit EdgeEnds(size_t triangles = 0) : triangles_(triangles) {}
+  const Triangle& operator[](size_t t) const {
+    return slot_.empty() || slot_[t] == kShared ? shared() : stored_[slot_[t]];
+  }
+  size_t size() const { return triangles_; }
+  /// True when some end is not Shared (the mesh splits normals along an edge).
+  bool anySplit() const { return !stored_.empty(); }
+
+ private:
+  friend EdgeEnds edgeEnds(const TriangleMesh&, const MeshTopology&);
+  static constexpr uint32_t kShared = ~uint32_t(0);
+  static const Triangle& shared() {
+    static const Triangle ends{};
+    return ends;
+  }
+  size_t triangles_ = 0;
+  std::vector<uint32_t> slot_;  ///< per triangle: its index in stored_, or kShared
+  std::vector<Triangle> stored_;
+};
 EdgeEnds edgeEnds(const TriangleMesh& mesh);
-struct MeshTopology;
 /// edgeEnds with the mesh's topology already at hand.
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo);
 
