@@ -82,19 +82,19 @@ EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
   // thread count. The normals' buffers are reused within a block of edges.
   std::vector<uint8_t> splitEdge(topo.edges.size(), 0);
   std::vector<std::atomic<uint8_t>> splitTriangle(mesh.triangleCount());
-  parallelForRange(tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
-                   [&](const tbb::blocked_range<size_t>& range) {
-                     std::vector<Vec3> na, nb;
-                     for (size_t e = range.begin(); e != range.end(); ++e) {
-                       const auto ends = classify(e, na, nb);
-                       if (ends[0].kind == EdgeEnd::Kind::Shared &&
-                           ends[1].kind == EdgeEnd::Kind::Shared)
-                         continue;
-                       splitEdge[e] = 1;
-                       for (auto [t, k] : topo.edges[e].sides)
-                         splitTriangle[t].store(1, std::memory_order_relaxed);
-                     }
-                   });
+  parallelForRange(
+      tbb::blocked_range<size_t>(0, topo.edges.size(), 4096),
+      [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<Vec3> na, nb;
+        for (size_t e = range.begin(); e != range.end(); ++e) {
+          const auto ends = classify(e, na, nb);
+          if (ends[0].kind == EdgeEnd::Kind::Shared && ends[1].kind == EdgeEnd::Kind::Shared)
+            continue;
+          splitEdge[e] = 1;
+          for (auto [t, k] : topo.edges[e].sides)
+            splitTriangle[t].store(1, std::memory_order_relaxed);
+        }
+      });
   size_t stored = 0;
   for (const auto& flag : splitTriangle) stored += flag.load(std::memory_order_relaxed);
   if (stored == 0) return out;
@@ -112,8 +112,8 @@ EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
                        const Edge& edge = topo.edges[e];
                        for (auto [t, k] : edge.sides) {
                          const bool forward = mesh.triangles[t][k] == edge.a;
-                         out.stored_[out.slot_[t]][k] = forward ? std::array<EdgeEnd, 2>{a, b}
-                                                                : std::array<EdgeEnd, 2>{b, a};
+                         out.stored_[out.slot_[t]][k] =
+                             forward ? std::array<EdgeEnd, 2>{a, b} : std::array<EdgeEnd, 2>{b, a};
                        }
                      }
                    });
