@@ -5,7 +5,9 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <random>
 
+#include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/edges_model.h"
 #include "surface_fixtures.h"
 
@@ -16,6 +18,44 @@ using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 
 using test::edgePlaneNormal;
+
+// The edge control points' damped solve against the SVD formula Σ σ/(σ² + μ²) (u·r) v, on
+// random systems (equal to 1e-9 relative) and rank-deficient ones (parallel tangent planes, a
+// missing edge plane: as small a damped residual).
+TEST(ThesisSystems, TheDampedSolveIsTheSvdsTikhonovSolution) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g;
+  const auto unit = [&] { return Vec3(g(rng), g(rng), g(rng)).normalized(); };
+  const double mu = 1e-7;
+  for (int trial = 0; trial < 300; ++trial) {
+    Mat3 M;
+    const Vec3 n0 = unit();
+    const Vec3 n1 = trial % 3 == 1 ? n0 : unit();            // parallel planes
+    const Vec3 np = trial % 5 == 2 ? Vec3::Zero() : unit();  // no edge plane
+    M.row(0) = n0.transpose();
+    M.row(1) = n1.transpose();
+    M.row(2) = np.transpose();
+    const Vec3 r(g(rng), g(rng), trial % 5 == 2 ? 0.0 : g(rng));
+    Eigen::JacobiSVD<Mat3> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Vec3 reference = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const double s = svd.singularValues()[k];
+      reference += (s / (s * s + mu * mu)) * svd.matrixU().col(k).dot(r) * svd.matrixV().col(k);
+    }
+    const Vec3 x = dampedLeastSquares(M, r, mu);
+    const auto objective = [&](const Vec3& d) {
+      return (M * d - r).squaredNorm() + mu * mu * d.squaredNorm();
+    };
+    // Where M is singular the answer along its null space is σ/(σ² + μ²) for a σ that is
+    // round-off (1e-16/μ² = 1e-2 of |r|) in either method: compare what both minimise there.
+    const bool singular = trial % 3 == 1 || trial % 5 == 2;
+    if (!singular) {
+      EXPECT_LE((x - reference).norm(), 1e-9 * std::max(1.0, reference.norm()))
+          << trial << ": " << x.transpose() << " against " << reference.transpose();
+    }
+    EXPECT_LE(objective(x), objective(reference) * (1.0 + 1e-9) + 1e-24) << trial;
+  }
+}
 
 // Eq. 4.6: f(u,v) = Σ_k φ_k(u,v) c_k with φ = (1, v, u, uv, v², u²) for c0..c5.
 std::array<double, 6> monomials(double u, double v) {

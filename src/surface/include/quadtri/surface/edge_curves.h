@@ -9,6 +9,10 @@
 
 namespace quadtri {
 
+/// The least-squares solution δ of [M; μI] δ = [r; 0] (Tikhonov: the minimiser of |Mδ − r|² +
+/// μ²|δ|²), by a fixed-size QR factorisation; μ > 0.
+Vec3 dampedLeastSquares(const Mat3& M, const Vec3& r, double mu);
+
 /// True when the edge's ends (vi, ni) and (vj, nj) should be swapped into the canonical order
 /// (lexicographic on positions, then normals), so a formula symmetric in the two ends gives
 /// the same bits whichever side of the edge evaluates it.
