@@ -13,10 +13,22 @@ namespace quadtri {
 /// and the quadratic normal field n(λ) = Σ_{i+j+k=2} n_ijk λ0^i λ1^j λ2^k (the paper's
 /// n200 w² + n110 wu + ..., no binomial factors), indices counting powers of (λ0, λ1, λ2).
 struct PnPatch {
+  /// Coefficients c[i][j] for i + j ≤ N, row after row, without the unused half of an
+  /// (N+1)×(N+1) array (a PN patch is 384 bytes instead of 600).
+  template <int N>
+  class Triangular {
+   public:
+    Vec3* operator[](int i) { return values_.data() + offset(i); }
+    const Vec3* operator[](int i) const { return values_.data() + offset(i); }
+
+   private:
+    static constexpr int offset(int i) { return i * (2 * N + 3 - i) / 2; }
+    std::array<Vec3, (N + 1) * (N + 2) / 2> values_;
+  };
   /// b[i][j] = b_{i,j,3−i−j}.
-  std::array<std::array<Vec3, 4>, 4> b;
+  Triangular<3> b;
   /// n[i][j] = n_{i,j,2−i−j}.
-  std::array<std::array<Vec3, 3>, 3> n;
+  Triangular<2> n;
 
   /// The paper's coefficients from corners p and unit normals nrm: edge points
   /// b_ij = (2p_i + p_j − w_ij n_i)/3 with w_ij = (p_j − p_i)·n_i; centre b111 = E + (E − V)/2
