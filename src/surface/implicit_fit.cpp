@@ -2,6 +2,8 @@
 
 #include <Eigen/QR>
 
+#include "quadtri/math/least_squares.h"
+
 namespace quadtri {
 namespace {
 
@@ -84,14 +86,9 @@ QuadricCoeffs fitThesisQuadric(const QuadraticPatch& fp) {
   // Least squares by unpivoted Householder QR where the rows have full rank (the common case,
   // and the cheapest), else the minimum-norm solution of a complete orthogonal decomposition
   // (what the SVD's pseudo-inverse gives).
-  const Eigen::HouseholderQR<Eigen::Matrix<double, 13, 10>> qr(m);
-  const auto r = qr.matrixQR().diagonal().cwiseAbs();
   Eigen::Matrix<double, 10, 1> x;
-  if (r.minCoeff() > 1e-10 * r.maxCoeff()) {
-    x = qr.solve(rhs);
-  } else {
+  if (!householderLeastSquares(m, rhs, x, 1e-10))
     x = Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 13, 10>>(m).solve(rhs);
-  }
   QuadricCoeffs q{};
   for (int i = 0; i < 10; ++i) q[i] = std::isfinite(x[i]) ? x[i] : 0.0;
   return q;

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <random>
 
+#include "quadtri/math/least_squares.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/edges_model.h"
 #include "surface_fixtures.h"
@@ -18,6 +20,30 @@ using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 
 using test::edgePlaneNormal;
+
+// The fixed-size Householder least squares of the implicit fit (13 rows, 10 unknowns) against
+// Eigen's HouseholderQR on random systems, and its refusal of a rank-deficient one.
+TEST(ThesisSystems, FixedSizeHouseholderMatchesEigensQr) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g;
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::Matrix<double, 13, 10> A;
+    Eigen::Matrix<double, 13, 1> b;
+    for (int i = 0; i < 13; ++i) {
+      for (int j = 0; j < 10; ++j) A(i, j) = g(rng) * std::pow(10.0, trial % 7 - 3);
+      b[i] = g(rng);
+    }
+    if (trial % 4 == 0) A(3, 3) = 0.0;  // a zero on the diagonal
+    const Eigen::Matrix<double, 10, 1> reference = A.householderQr().solve(b);
+    Eigen::Matrix<double, 10, 1> x;
+    ASSERT_TRUE(householderLeastSquares(A, b, x, 1e-10)) << trial;
+    EXPECT_LE((x - reference).norm(), 1e-10 * reference.norm()) << trial;
+  }
+  Eigen::Matrix<double, 13, 10> A = Eigen::Matrix<double, 13, 10>::Random();
+  A.col(7) = 2.0 * A.col(2);
+  Eigen::Matrix<double, 10, 1> x;
+  EXPECT_FALSE(householderLeastSquares(A, Eigen::Matrix<double, 13, 1>::Ones().eval(), x, 1e-10));
+}
 
 // The edge control points' damped solve against the SVD formula Σ σ/(σ² + μ²) (u·r) v, on
 // random systems (equal to 1e-9 relative) and rank-deficient ones (parallel tangent planes, a
