@@ -13,11 +13,11 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
   const size_t triangles = mesh.triangles.size();
   const size_t halves = 3 * triangles;
   const size_t vertices = mesh.positions.size();
-  // Half-edge h = 3t + k joins vertices lower(h) < upper(h) (or two equal ones). Ordered by
-  // (lower, upper, h) the half-edges of one edge are adjacent. A counting sort on lower puts
-  // them in buckets in increasing h; each bucket (about six half-edges on a closed mesh) is then
-  // ordered by upper, stably. The order is the one sorting (lower, upper, h) gives, whatever
-  // the thread count, in linear time and without a key array.
+  // Half-edge h = 3t + k joins vertices lower(h) <= upper(h). Ordered by (lower, upper, h) the
+  // half-edges of one edge are adjacent, least h first. A counting sort on lower puts the
+  // entries (upper, h) in one bucket per vertex, in increasing h; each bucket (about six
+  // entries on a closed mesh) is then sorted. That order does not depend on the thread count,
+  // and it takes linear time.
   const auto ends = [&](size_t h) {
     const Tri& tri = mesh.triangles[h / 3];
     const int k = int(h % 3);
@@ -33,65 +33,70 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
     ++start[a + 1];
   }
   for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
-  std::vector<uint32_t> order(halves);
+  // entry = upper << 32 | h: sorting a bucket's entries sorts it by (upper, h).
+  std::vector<uint64_t> entries(halves);
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t h = 0; h < halves; ++h) order[fill[ends(h).first]++] = uint32_t(h);
+    for (size_t h = 0; h < halves; ++h) {
+      const auto [a, b] = ends(h);
+      entries[fill[a]++] = (uint64_t(b) << 32) | h;
+    }
   }
+  const auto upperOf = [](uint64_t entry) { return uint32_t(entry >> 32); };
+  const auto halfOf = [](uint64_t entry) { return uint32_t(entry); };
+  // Each bucket's edges: runs of one upper. groupSize[h] is the number of sides of the edge
+  // whose least half-edge is h, 0 for every other h. Buckets are independent.
+  std::vector<uint32_t> groupSize(halves, 0);
+  const auto forEachEdge = [&](size_t v, const auto& f) {
+    const uint64_t* first = entries.data() + start[v];
+    const uint64_t* last = entries.data() + start[v + 1];
+    for (const uint64_t* i = first; i < last;) {
+      const uint64_t* j = i + 1;
+      while (j < last && upperOf(*j) == upperOf(*i)) ++j;
+      f(i, j);
+      i = j;
+    }
+  };
   parallelForRange(tbb::blocked_range<size_t>(0, vertices, 4096),
                    [&](const tbb::blocked_range<size_t>& range) {
                      for (size_t v = range.begin(); v != range.end(); ++v) {
-                       uint32_t* first = order.data() + start[v];
-                       uint32_t* last = order.data() + start[v + 1];
-                       // Insertion sort: stable, and the buckets are small.
-                       for (uint32_t* i = first + 1; i < last; ++i) {
-                         const uint32_t h = *i;
-                         const uint32_t upper = ends(h).second;
-                         uint32_t* j = i;
-                         for (; j > first && ends(*(j - 1)).second > upper; --j) *j = *(j - 1);
-                         *j = h;
-                       }
+                       std::sort(entries.data() + start[v], entries.data() + start[v + 1]);
+                       forEachEdge(v, [&](const uint64_t* i, const uint64_t* j) {
+                         groupSize[halfOf(*i)] = uint32_t(j - i);
+                       });
                      }
                    });
-  // leader[h]: the first half-edge (least h) of h's edge. Edges are numbered by their leader.
-  std::vector<uint32_t> leader(halves);
-  std::vector<uint32_t> groupSize(halves, 0);
-  for (size_t i = 0; i < halves;) {
-    const auto key = ends(order[i]);
-    size_t j = i + 1;
-    while (j < halves && ends(order[j]) == key) ++j;
-    const uint32_t first = order[i];
-    for (size_t g = i; g < j; ++g) leader[order[g]] = first;
-    groupSize[first] = uint32_t(j - i);
-    i = j;
-  }
+  // Edges are numbered in the order of their least half-edge; offset[e] is where edge e's
+  // sides begin in sides_.
   std::vector<uint32_t> edgeId(halves, 0);
-  size_t edgeCount = 0;
+  std::vector<size_t> offset(1, 0);
+  offset.reserve(halves / 2 + 2);
   for (size_t h = 0; h < halves; ++h)
-    if (leader[h] == h) edgeId[h] = uint32_t(edgeCount++);
+    if (groupSize[h] > 0) {
+      edgeId[h] = uint32_t(offset.size() - 1);
+      offset.push_back(offset.back() + groupSize[h]);
+    }
+  const size_t edgeCount = offset.size() - 1;
   edges.resize(edgeCount);
-  std::vector<size_t> offset(edgeCount + 1, 0);
-  for (size_t h = 0; h < halves; ++h)
-    if (leader[h] == h) offset[edgeId[h] + 1] = groupSize[h];
-  for (size_t e = 0; e < edgeCount; ++e) offset[e + 1] += offset[e];
   sides_.resize(halves);
   edgeOf.resize(triangles);
-  std::vector<size_t> fill(offset.begin(), offset.end() - 1);
-  for (size_t h = 0; h < halves; ++h) {
-    const uint32_t e = edgeId[leader[h]];
-    const uint32_t t = uint32_t(h / 3);
-    const uint8_t k = uint8_t(h % 3);
-    sides_[fill[e]++] = EdgeSide(t, k);
-    edgeOf[t][k] = e;
-    if (leader[h] == h) {
-      uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-      if (a > b) std::swap(a, b);
-      edges[e].a = a;
-      edges[e].b = b;
-    }
-  }
-  for (size_t e = 0; e < edgeCount; ++e)
-    edges[e].sides = EdgeSides(sides_.data() + offset[e], sides_.data() + offset[e + 1]);
+  parallelForRange(tbb::blocked_range<size_t>(0, vertices, 4096),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     for (size_t v = range.begin(); v != range.end(); ++v)
+                       forEachEdge(v, [&](const uint64_t* i, const uint64_t* j) {
+                         const uint32_t e = edgeId[halfOf(*i)];
+                         Edge& edge = edges[e];
+                         edge.a = uint32_t(v);
+                         edge.b = upperOf(*i);
+                         EdgeSide* side = sides_.data() + offset[e];
+                         for (const uint64_t* g = i; g < j; ++g, ++side) {
+                           const uint32_t h = halfOf(*g);
+                           *side = EdgeSide(h / 3, uint8_t(h % 3));
+                           edgeOf[h / 3][h % 3] = e;
+                         }
+                         edge.sides = EdgeSides(sides_.data() + offset[e], side);
+                       });
+                   });
 }
 
 size_t MeshTopology::boundaryEdgeCount() const {
