@@ -229,7 +229,8 @@ Ray RenderScene::spawnRay(const SurfaceInteraction& si, const Vec3& direction) c
 
 Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
                             const Vec3& targetNormal) const {
-  Ray ray = spawnRay(si, safeNormalized(target - si.p));
+  // spawnRay only needs the direction's side of the two normals, not its length.
+  Ray ray = spawnRay(si, target - si.p);
   const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
   const Vec3 end = target + side * floatErrorOffset(maxAbs(target)) * targetNormal;
   const Vec3 toEnd = end - ray.origin;

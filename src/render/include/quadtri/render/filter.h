@@ -46,16 +46,20 @@ Vec2 ReconstructionFilter::sampleOffset(Rng& rng) const {
     };
     return Vec2(tent(u.x()), tent(u.y()));
   }
-  // Box–Muller gives two independent normals; a component beyond the radius is redrawn
-  // (probability 6e-5 at 4σ), which samples the truncated normal exactly.
+  // Marsaglia's polar form of Box–Muller gives two independent normals from a uniform point
+  // (a, b) of the unit disc (drawn by rejection from the square, accepted with probability
+  // π/4) without a sine or cosine: (a, b) √(−2 ln s / s), s = a² + b². A component beyond the
+  // radius is redrawn (probability 6e-5 at 4σ), which samples the truncated normal exactly.
   const double r = radius();
   Vec2 offset;
   for (int axis = 0; axis < 2;) {
     const Vec2 u = rng.next2D();
-    const double rho = stddev * std::sqrt(-2.0 * std::log1p(-u.x()));
-    const double a = rho * std::cos(2.0 * kPi * u.y()), b = rho * std::sin(2.0 * kPi * u.y());
-    if (std::abs(a) <= r) offset[axis++] = a;
-    if (axis < 2 && std::abs(b) <= r) offset[axis++] = b;
+    const double a = 2.0 * u.x() - 1.0, b = 2.0 * u.y() - 1.0;
+    const double s = a * a + b * b;
+    if (!(s < 1.0 && s > 0.0)) continue;
+    const double scale = stddev * std::sqrt(-2.0 * std::log(s) / s);
+    if (std::abs(a * scale) <= r) offset[axis++] = a * scale;
+    if (axis < 2 && std::abs(b * scale) <= r) offset[axis++] = b * scale;
   }
   return offset;
 }
