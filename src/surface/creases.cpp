@@ -63,7 +63,7 @@ EdgeEnds edgeEnds(const TriangleMesh& mesh) {
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
   EdgeEnds out(mesh.triangleCount());
   if (!mesh.hasNormals()) return out;
-  // The ends of edge e from the corner normals of its sides; `scratch` holds the normals.
+  // The ends of edge e from the corner normals of its sides (na, nb: reused buffers for them).
   const auto classify = [&](size_t e, std::vector<Vec3>& na, std::vector<Vec3>& nb) {
     const Edge& edge = topo.edges[e];
     na.clear();
