@@ -59,7 +59,9 @@ Vec3 dampedLeastSquares(const Mat3& M, const Vec3& r, double mu) {
   for (int j = 0; j < 3; ++j)
     for (int i = j + 1; i < 6; ++i) {
       if (a[i][j] == 0.0) continue;
-      const double rho = std::sqrt(a[j][j] * a[j][j] + a[i][j] * a[i][j]);
+      double rho = std::sqrt(a[j][j] * a[j][j] + a[i][j] * a[i][j]);
+      // Squares below ~1e-308 underflow: hypot scales them (rare, and dearer).
+      if (!(rho > 1e-150)) rho = std::hypot(a[j][j], a[i][j]);
       const double c = a[j][j] / rho, s = a[i][j] / rho;
       for (int k = j; k < 4; ++k) {
         const double top = a[j][k], bottom = a[i][k];

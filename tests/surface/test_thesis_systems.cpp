@@ -81,6 +81,15 @@ TEST(ThesisSystems, TheDampedSolveIsTheSvdsTikhonovSolution) {
     }
     EXPECT_LE(objective(x), objective(reference) * (1.0 + 1e-9) + 1e-24) << trial;
   }
+  // Entries whose squares underflow (a column of 0 and 1e-170) still rotate, without 0/0.
+  Mat3 tiny;
+  tiny << 0, 1, 0,   //
+      1e-170, 0, 1,  //
+      0, 0, 0;
+  const Vec3 x = dampedLeastSquares(tiny, Vec3(0.5, -0.25, 0), mu);
+  EXPECT_TRUE(x.allFinite()) << x.transpose();
+  EXPECT_NEAR(x.y(), 0.5, 1e-12);
+  EXPECT_NEAR(x.z(), -0.25, 1e-12);
 }
 
 // Eq. 4.6: f(u,v) = Σ_k φ_k(u,v) c_k with φ = (1, v, u, uv, v², u²) for c0..c5.
