@@ -19,10 +19,8 @@ Vec3 TriangleMesh::cornerNormal(size_t t, int k) const {
 }
 
 Vec3 TriangleMesh::unitCornerNormal(size_t t, int k) const {
-  const Vec3 n = cornerNormal(t, k);
-  const double len = n.norm();
-  if (len > 0.0 && std::isfinite(len)) return n / len;
-  return faceNormal(t);
+  const Vec3 unit = safeNormalized(cornerNormal(t, k), Vec3::Zero());
+  return unit != Vec3::Zero() ? unit : faceNormal(t);
 }
 
 Bounds3 TriangleMesh::bounds() const {

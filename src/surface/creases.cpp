@@ -1,9 +1,9 @@
 #include "quadtri/surface/creases.h"
 
-#include <Eigen/QR>
 #include <atomic>
 #include <cmath>
 
+#include "quadtri/math/least_squares.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/edge_curves.h"
@@ -161,7 +161,8 @@ Vec3 creaseControlPoint(const Vec3& vaIn, const EdgeEnd& eaIn, const Vec3& naIn,
   addEnd(eb, nb, vb);
   // The damping rows sit below the constraints; unused constraint rows stay zero.
   A.bottomRows<3>() = kDamping * Mat3::Identity();
-  const Vec3 delta = A.householderQr().solve(r);
+  Vec3 delta;
+  if (!householderLeastSquares(A, r, delta, 0.0)) delta.setConstant(std::nan(""));
   // Taken when b lies within half the chord of its midpoint and over its middle half, so that
   // neither end's tangent 2(b − v) has less than half the chord's length along the chord.
   if (allFinite(delta) && delta.norm() <= 0.5 * len && std::abs(delta.dot(e)) <= 0.25 * len * len)

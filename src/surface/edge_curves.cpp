@@ -1,5 +1,6 @@
 #include "quadtri/surface/edge_curves.h"
 
+#include "quadtri/math/least_squares.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/creases.h"
@@ -47,34 +48,15 @@ Vec3 dampedLeastSquares(const Mat3& M, const Vec3& r, double mu) {
   // The damped pseudo-inverse solution Σ_k σ_k/(σ_k² + μ²) (u_k·r) v_k is the Tikhonov
   // minimiser of |Mδ − r|² + μ²|δ|², i.e. the least-squares solution of [M; μI] δ = [r; 0].
   // A QR factorisation of that 6×3 matrix computes it as accurately as an SVD of M (no normal
-  // equations, so the condition number is not squared). Givens rotations on the augmented rows
-  // [A | rhs], at fixed size, reduce A to an upper triangle R with Qᵀrhs beside it; the zeros of
-  // μI are skipped. Its diagonal is at least μ in size, so the back substitution is defined.
-  double a[6][4] = {};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) a[i][j] = M(i, j);
-    a[i][3] = r[i];
-    a[3 + i][i] = mu;
-  }
-  for (int j = 0; j < 3; ++j)
-    for (int i = j + 1; i < 6; ++i) {
-      if (a[i][j] == 0.0) continue;
-      double rho = std::sqrt(a[j][j] * a[j][j] + a[i][j] * a[i][j]);
-      // Squares below ~1e-308 underflow: hypot scales them (rare, and dearer).
-      if (!(rho > 1e-150)) rho = std::hypot(a[j][j], a[i][j]);
-      const double c = a[j][j] / rho, s = a[i][j] / rho;
-      for (int k = j; k < 4; ++k) {
-        const double top = a[j][k], bottom = a[i][k];
-        a[j][k] = c * top + s * bottom;
-        a[i][k] = c * bottom - s * top;
-      }
-    }
+  // equations, so the condition number is not squared). Every column holds μ, so the columns are
+  // independent; only non-finite input makes the solve refuse, and then the answer is NaN.
+  Eigen::Matrix<double, 6, 3> A;
+  A.topRows<3>() = M;
+  A.bottomRows<3>() = mu * Mat3::Identity();
+  Eigen::Matrix<double, 6, 1> rhs;
+  rhs << r, 0.0, 0.0, 0.0;
   Vec3 x;
-  for (int j = 2; j >= 0; --j) {
-    double sum = a[j][3];
-    for (int k = j + 1; k < 3; ++k) sum -= a[j][k] * x[k];
-    x[j] = sum / a[j][j];
-  }
+  if (!householderLeastSquares(A, rhs, x, 0.0)) x.setConstant(std::nan(""));
   return x;
 }
 

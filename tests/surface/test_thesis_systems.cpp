@@ -81,7 +81,7 @@ TEST(ThesisSystems, TheDampedSolveIsTheSvdsTikhonovSolution) {
     }
     EXPECT_LE(objective(x), objective(reference) * (1.0 + 1e-9) + 1e-24) << trial;
   }
-  // Entries whose squares underflow (a column of 0 and 1e-170) still rotate, without 0/0.
+  // Entries whose squares underflow (a column of 0 and 1e-170) still solve, without 0/0.
   Mat3 tiny;
   tiny << 0, 1, 0,   //
       1e-170, 0, 1,  //

@@ -10,7 +10,7 @@
 namespace quadtri {
 
 /// The least-squares solution δ of [M; μI] δ = [r; 0] (Tikhonov: the minimiser of |Mδ − r|² +
-/// μ²|δ|²), by a fixed-size QR factorisation; μ > 0.
+/// μ²|δ|²), by a fixed-size Householder QR (math/least_squares.h); μ > 0.
 Vec3 dampedLeastSquares(const Mat3& M, const Vec3& r, double mu);
 
 /// True when the edge's ends (vi, ni) and (vj, nj) should be swapped into the canonical order
