@@ -492,6 +492,12 @@ void RobustImplicitModel::addBridges(const MeshTopology& topo,
 }
 
 SurfacePoint RobustImplicitModel::evaluate(size_t t, double u, double v) const {
+  const Vec3 p = position(t, u, v);
+  return {p, safeNormalized(patches_[t].orientation * quadricGradient(patches_[t].q, p),
+                            frames_[t].faceNormal)};
+}
+
+Vec3 RobustImplicitModel::position(size_t t, double u, double v) const {
   const Frame& frame = frames_[t];
   const QuadricPatch& patch = patches_[t];
   const QuadricCoeffs& q = patch.q;
@@ -532,8 +538,7 @@ SurfacePoint RobustImplicitModel::evaluate(size_t t, double u, double v) const {
   if (!std::isfinite(s)) {
     s = 0.0;
   }
-  const Vec3 p = start + s * dir;
-  return {p, safeNormalized(patch.orientation * quadricGradient(q, p), frame.faceNormal)};
+  return start + s * dir;
 }
 
 nlohmann::json RobustImplicitModel::patchJson(size_t t) const {

@@ -124,7 +124,7 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
   double hmin = 0.0, hmax = 0.0;
   for (int j = 0; j <= kBoundSamples; ++j)
     for (int i = 0; i + j <= kBoundSamples; ++i) {
-      const Vec3 p = evaluate(t, double(i) / kBoundSamples, double(j) / kBoundSamples).position;
+      const Vec3 p = position(t, double(i) / kBoundSamples, double(j) / kBoundSamples);
       hmin = std::min(hmin, n.dot(p - centre));
       hmax = std::max(hmax, n.dot(p - centre));
     }

@@ -1,6 +1,6 @@
 #include "quadtri/surface/robust_quadric_fit.h"
 
-#include <Eigen/SVD>
+#include <Eigen/QR>
 
 namespace quadtri {
 namespace {
@@ -104,21 +104,30 @@ bool solveTangency(const std::array<Vec3, 3>& y, const std::array<Vec3, 3>& norm
       rhs[3] = 1.0;
     }
   }
-  Eigen::JacobiSVD<Eigen::Matrix<double, 6, 10>> hardSvd(H,
-                                                         Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const auto hs = hardSvd.singularValues();
+  // The hard rows' row space and null space from a column-pivoted QR of Hᵀ: Hᵀ P = Q R, so
+  // Pᵀ H = Rᵀ Qᵀ. The first `rank` columns of Q span H's rows, the others its null space, and
+  // the solution of least norm is Q₁ z with R₁₁ᵀ z = (Pᵀ rhs) on the first `rank` rows.
+  const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 10, 6>> hardQr(H.transpose());
+  const Eigen::Matrix<double, 10, 6>& R = hardQr.matrixQR();
+  const double r0 = std::abs(R(0, 0));
   int rank = 0;
-  while (rank < 6 && hs[rank] > 1e-12 * hs[0]) ++rank;
+  while (rank < 6 && std::abs(R(rank, rank)) > 1e-12 * r0) ++rank;
   if (rank == 0) return false;
-  Coeffs particular = Coeffs::Zero();
-  for (int i = 0; i < rank; ++i)
-    particular += (hardSvd.matrixU().col(i).dot(rhs) / hs[i]) * hardSvd.matrixV().col(i);
+  const Eigen::Matrix<double, 10, 10> Q = hardQr.householderQ();
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> z(rank);
+  for (int i = 0; i < rank; ++i) {
+    double sum = rhs[hardQr.colsPermutation().indices()[i]];
+    for (int j = 0; j < i; ++j) sum -= R(j, i) * z[j];
+    z[i] = sum / R(i, i);
+  }
+  const Coeffs particular = Q.leftCols(rank) * z;
   // Per-corner rows can contradict each other (a repeated corner with opposite normals).
   if ((H * particular - rhs).norm() > 1e-9 * rhs.norm()) return false;
-  nullBasis = hardSvd.matrixV().rightCols(10 - rank);
+  nullBasis = Q.rightCols(10 - rank);
 
   // Tangency: the gradient's tangential part at each corner, damped least squares on the null
-  // space of the hard rows (particular ⟂ that null space, so damping pulls toward it).
+  // space of the hard rows (particular ⟂ that null space, so damping pulls toward it):
+  // min |T(particular + N a)|² + μ²|a|², the least squares of [T N; μ I] a = [−T particular; 0].
   Eigen::Matrix<double, 6, 10> T;
   for (int k = 0; k < 3; ++k) {
     Vec3 t1, t2;
@@ -126,17 +135,16 @@ bool solveTangency(const std::array<Vec3, 3>& y, const std::array<Vec3, 3>& norm
     T.row(2 * k) = gradientRow(y[k], t1);
     T.row(2 * k + 1) = gradientRow(y[k], t2);
   }
-  const Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 10> TN = T * nullBasis;
-  const Eigen::Matrix<double, 6, 1> residual = T * particular;
-  Eigen::JacobiSVD<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 10>> tanSvd(
-      TN, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1> a =
-      Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1>::Zero(nullBasis.cols());
-  for (int i = 0; i < tanSvd.singularValues().size(); ++i) {
-    const double s = tanSvd.singularValues()[i];
-    a -= (s / (s * s + kTangencyDamping * kTangencyDamping)) *
-         tanSvd.matrixU().col(i).dot(residual) * tanSvd.matrixV().col(i);
-  }
+  const Eigen::Index free = nullBasis.cols();
+  using Stacked = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 16, 10>;
+  Stacked damped = Stacked::Zero(6 + free, free);
+  damped.topRows(6) = T * nullBasis;
+  damped.bottomRows(free).diagonal().setConstant(kTangencyDamping);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 16, 1> target =
+      Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 16, 1>::Zero(6 + free);
+  target.head(6) = -(T * particular);
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1> a =
+      Eigen::HouseholderQR<Stacked>(damped).solve(target);
   w = particular + nullBasis * a;
   return true;
 }
