@@ -49,6 +49,17 @@ void lineZeros(const QuadricCoeffs& q, const Vec3& o, const Vec3& d, const Visit
     if (std::isfinite(roots[i])) visit(o + roots[i] * d, roots[i]);
 }
 
+// A function of the angle of (x, y) that increases with it as atan2(y, x) does on (−π, π], in
+// (−2, 2], without a transcendental call: y / (|x| + |y|) on the right half, reflected on the
+// left. Enough to sort points around a centre.
+double pseudoAngle(double x, double y) {
+  const double sum = std::abs(x) + std::abs(y);
+  if (!(sum > 0.0)) return 0.0;
+  const double r = y / sum;
+  if (x >= 0.0) return r;
+  return y >= 0.0 ? 2.0 - r : -2.0 - r;
+}
+
 // Orthonormal (u, w) spanning the plane with normal n.
 void planeBasis(const Vec4& plane, Vec3& u, Vec3& w) {
   orthonormalBasis(plane.head<3>().normalized(), u, w);
@@ -128,21 +139,25 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
   cell.planes = planes;
   cell.tolerance = tolerance;
   const size_t n = planes.size();
+  const double merge2 = 16.0 * tolerance * tolerance;  // vertices within 4 tolerances are one
   for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 1; j < n; ++j)
+    for (size_t j = i + 1; j < n; ++j) {
+      const Vec3 ni = planes[i].head<3>(), nj = planes[j].head<3>();
+      const Vec3 ij = ni.cross(nj);
       for (size_t k = j + 1; k < n; ++k) {
-        Mat3 A;
-        A.row(0) = planes[i].head<3>();
-        A.row(1) = planes[j].head<3>();
-        A.row(2) = planes[k].head<3>();
-        const double det = A.determinant();
+        // The point on all three planes, by Cramer's rule: with det = n_i·(n_j × n_k),
+        // p = −(d_i (n_j × n_k) + d_j (n_k × n_i) + d_k (n_i × n_j)) / det.
+        const Vec3 nk = planes[k].head<3>();
+        const Vec3 jk = nj.cross(nk);
+        const double det = ni.dot(jk);
         if (!(std::abs(det) > 1e-12)) continue;
-        const Vec3 p = A.inverse() * Vec3(-planes[i][3], -planes[j][3], -planes[k][3]);
+        const Vec3 p = -(planes[i][3] * jk + planes[j][3] * nk.cross(ni) + planes[k][3] * ij) / det;
         if (!allFinite(p) || !cell.contains(p)) continue;
         bool known = false;
-        for (const Vec3& v : cell.vertices) known |= (v - p).norm() <= 4.0 * tolerance;
+        for (const Vec3& v : cell.vertices) known |= (v - p).squaredNorm() <= merge2;
         if (!known) cell.vertices.push_back(p);
       }
+    }
   cell.faces.assign(n, {});
   for (size_t f = 0; f < n; ++f) {
     std::vector<int>& face = cell.faces[f];
@@ -168,7 +183,7 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
     }
     for (int v : face) {
       const Vec3 p = cell.vertices[size_t(v)] - c;
-      angle[v] = std::atan2(p.dot(w), p.dot(u));
+      angle[v] = pseudoAngle(p.dot(u), p.dot(w));
     }
     std::sort(face.begin(), face.end(), [&](int a, int b) { return angle[a] < angle[b]; });
   }
