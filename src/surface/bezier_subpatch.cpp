@@ -169,7 +169,7 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int level
   BezierSubPatch s;
   s.piece = piece;
   s.level = uint8_t(level);
-  s.path = uint8_t(path);
+  s.path = uint16_t(path);
   Bounds3 box;
   for (const Vec3& p : net.b) box.extend(p);
   for (int c = 0; c < 3; ++c) s.lo[c] = floatDown(box.lo[c]), s.hi[c] = floatUp(box.hi[c]);
@@ -249,7 +249,7 @@ Bounds3 BezierSubPatch::bounds() const {
 
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees, size_t budget) {
-  if (budget == 0) budget = std::max<size_t>(16384, 8 * pieces.size());
+  if (budget == 0) budget = std::max<size_t>(65536, 8 * pieces.size());
   constexpr size_t kMaxRegions = size_t(1) << (2 * BezierSubPatch::kMaxLevel);
   // Each piece's share of the budget, split among its regions on its own (in parallel, in a
   // fixed slot each, so the result does not depend on the threads).
@@ -257,7 +257,7 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
       std::clamp<size_t>(budget / std::max<size_t>(pieces.size(), 1), 1, kMaxRegions);
   const double sinMax = std::sin(coneDegrees * kPi / 180.0);
   std::vector<BezierSubPatch> slots(pieces.size() * share);
-  std::vector<uint8_t> counts(pieces.size(), 0);
+  std::vector<uint16_t> counts(pieces.size(), 0);
   parallelForRange(
       tbb::blocked_range<size_t>(0, pieces.size(), 256),
       [&](const tbb::blocked_range<size_t>& range) {
@@ -304,12 +304,12 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
             }
           }
           for (size_t k = 0; k < items.size(); ++k) slots[p * share + k] = items[k].sub;
-          counts[p] = uint8_t(items.size());
+          counts[p] = uint16_t(items.size());
         }
       });
   std::vector<BezierSubPatch> out;
   size_t total = 0;
-  for (uint8_t c : counts) total += c;
+  for (uint16_t c : counts) total += c;
   out.reserve(total);
   for (size_t p = 0; p < pieces.size(); ++p)
     out.insert(out.end(), slots.begin() + std::ptrdiff_t(p * share),

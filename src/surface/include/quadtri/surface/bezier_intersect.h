@@ -83,7 +83,7 @@ std::array<BezierTriangle, 4> subdivideBezierTriangle(const BezierTriangle& piec
 /// most rays at the cost of a few dot products and tells when one Newton solve is exact.
 /// Directions and bounds are floats, computed so that they hold for the rounded directions.
 struct BezierSubPatch {
-  static constexpr int kMaxLevel = 3;
+  static constexpr int kMaxLevel = 5;
   /// The prism that holds the region's control points: corner 0 `p0`, the corner triangle's
   /// unit normal `n`, and g1, g2 such that (x − p0)·g1 and (x − p0)·g2 are the corner triangle's
   /// barycentric coordinates 1 and 2 of x's projection along n. Every control point has
@@ -107,7 +107,7 @@ struct BezierSubPatch {
   float lo[3] = {}, hi[3] = {};  ///< box of the region's control points
   uint32_t piece = 0;            ///< the piece's index
   uint8_t level = 0;             ///< 4-splits from the piece (0: the whole piece)
-  uint8_t path = 0;              ///< the child taken at split l in bits 2l and 2l + 1
+  uint16_t path = 0;             ///< the child taken at split l in bits 2l and 2l + 1
 
   /// The region's corners in the piece's (u, v).
   void corners(double* cu, double* cv) const;
@@ -115,11 +115,11 @@ struct BezierSubPatch {
 };
 
 /// The sub-patches that rendering traces in place of `pieces`: the pieces, then, while fewer
-/// than `budget` (0: the larger of 16384 and 8 per piece), the region with the widest derivative
+/// than `budget` (0: the larger of 65536 and 8 per piece), the region with the widest derivative
 /// cone split in 4, down to BezierSubPatch::kMaxLevel splits or a cone of `coneDegrees`. The
 /// narrower the cone, the fewer rays meet a region where one Newton solve does not settle it.
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
-                                             double coneDegrees = 10.0, size_t budget = 0);
+                                             double coneDegrees = 5.0, size_t budget = 0);
 
 /// Nearest hit of o + t·d with the sub-patch's region of `piece` (`sub.piece`'s piece), for t in
 /// (tmin, tmax); (u, v) are the piece's. Exact as intersectBezierTriangle, restricted to the
