@@ -16,6 +16,9 @@ namespace quadtri {
 namespace {
 
 constexpr unsigned kInvalidId = RTC_INVALID_GEOMETRY_ID;
+// A Bézier piece within this share of its box's diagonal of its corner triangle is traced as
+// that triangle (far below what a float hit resolves).
+constexpr double kFlatPieceTolerance = 1e-12;
 
 // What the patch callbacks need: the patches and how much to grow their bounds. The double ray
 // differs from Embree's float copy by about 6e-8 of the distance travelled, so boxes grow by
@@ -28,9 +31,16 @@ struct PatchGeometry {
 // The same for Bézier pieces. Rendering structures trace `subPatches` (regions of the pieces,
 // the primitives of Embree's user geometry, each hit reported as its piece's); those that collect
 // every hit (crack rates) have none and trace whole pieces, one primitive each.
+// Rendering structures also trace the pieces that are their own corner triangle, linearly
+// parametrised (BezierTriangle::isAffine: a flat face with one normal), as native triangles of a
+// geometry of their own, `flatGeometry`: triangle i is piece flatPieces[i], its Embree (u, v)
+// the piece's. Accel::intersect reports its hits as the pieces' own.
 struct BezierGeometry {
   const std::vector<BezierTriangle>* pieces = nullptr;
+  bool tracesSubPatches = false;
   std::vector<BezierSubPatch> subPatches;
+  unsigned id = kInvalidId, flatGeometry = kInvalidId;
+  std::vector<uint32_t> flatPieces;
   double margin = 0.0;
 };
 
@@ -162,11 +172,31 @@ RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geome
   return hit;
 }
 
+// Embree's hit of a flat piece's triangle, again in double precision (Möller–Trumbore on the
+// double ray), its (u, v) kept in the triangle; Embree's float one where the ray runs in the
+// triangle's plane.
+BezierHit flatPieceHit(const BezierTriangle& piece, const Ray& ray, const RTCRayHit& rayhit) {
+  BezierHit h{double(rayhit.ray.tfar), double(rayhit.hit.u), double(rayhit.hit.v)};
+  const Vec3& p0 = piece.at(4, 0, 0);
+  const Vec3 e1 = piece.at(0, 4, 0) - p0, e2 = piece.at(0, 0, 4) - p0;
+  const Vec3 pv = ray.direction.cross(e2);
+  const double det = e1.dot(pv);
+  if (!(std::abs(det) > 0.0)) return h;
+  const Vec3 tv = ray.origin - p0;
+  const Vec3 qv = tv.cross(e1);
+  const double t = e2.dot(qv) / det;
+  double u = tv.dot(pv) / det, v = ray.direction.dot(qv) / det;
+  if (!std::isfinite(t) || !std::isfinite(u) || !std::isfinite(v)) return h;
+  u = std::clamp(u, 0.0, 1.0);
+  v = std::clamp(v, 0.0, 1.0 - u);
+  return {t, u, v};
+}
+
 void bezierBounds(const RTCBoundsFunctionArguments* args) {
   acquireEdge(args->geometryUserPtr);
   const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
-  writeBounds(g->subPatches.empty() ? (*g->pieces)[args->primID].bounds
-                                    : g->subPatches[args->primID].bounds(),
+  writeBounds(g->tracesSubPatches ? g->subPatches[args->primID].bounds()
+                                  : (*g->pieces)[args->primID].bounds,
               g->margin, args->bounds_o);
   releaseEdge(&g->margin);
 }
@@ -193,7 +223,7 @@ void intersectBezier(const RTCIntersectFunctionNArguments* args) {
   const double tmax = userIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
   BezierHit h;
   unsigned primitive = args->primID;
-  if (g->subPatches.empty()) {
+  if (!g->tracesSubPatches) {
     if (!intersectBezierTriangle(pieces[primitive], ctx->ray->origin, ctx->ray->direction,
                                  ctx->tnear, tmax, h))
       return;
@@ -227,7 +257,7 @@ void occludedBezier(const RTCOccludedFunctionNArguments* args) {
   const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
   const std::vector<BezierTriangle>& pieces = *g->pieces;
   bool hit;
-  if (g->subPatches.empty()) {
+  if (!g->tracesSubPatches) {
     hit = occludesBezierTriangle(pieces[args->primID], ctx->ray->origin, ctx->ray->direction,
                                  ctx->tnear, ctx->ray->tfar);
   } else {
@@ -287,6 +317,8 @@ struct Accel::Impl {
   size_t bytes = 0;
   std::vector<std::unique_ptr<PatchGeometry>> patchGeometries;  // stable user pointers
   std::vector<std::unique_ptr<BezierGeometry>> bezierGeometries;
+  // By geometry id: the Bézier geometry whose flat pieces that native geometry holds.
+  std::vector<const BezierGeometry*> flatOwner;
 
   // Throws this thread's pending Embree error, naming the step.
   static void check(const char* what) {
@@ -427,13 +459,42 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
   auto user = std::make_unique<BezierGeometry>();
   user->pieces = &pieces;
   user->margin = 1e-5 * extent;
-  if (!impl_->options.collectHits) user->subPatches = bezierSubPatches(pieces);
-  const size_t primitives = user->subPatches.empty() ? pieces.size() : user->subPatches.size();
+  if (!impl_->options.collectHits) {
+    user->tracesSubPatches = true;
+    std::vector<char> flat(pieces.size(), 0);
+    parallelFor(size_t(0), pieces.size(),
+                [&](size_t i) { flat[i] = pieces[i].isAffine(kFlatPieceTolerance) ? 1 : 0; });
+    for (size_t i = 0; i < pieces.size(); ++i)
+      if (flat[i]) user->flatPieces.push_back(uint32_t(i));
+    user->subPatches = bezierSubPatches(pieces);
+    std::erase_if(user->subPatches,
+                  [&](const BezierSubPatch& sub) { return flat[sub.piece] != 0; });
+  }
+  const size_t primitives = user->tracesSubPatches ? user->subPatches.size() : pieces.size();
   const uint32_t id =
       impl_->attachUserGeometry(primitives, user.get(), &bezierBounds, &intersectBezier,
                                 &occludedBezier, "attaching the Bézier pieces");
+  user->id = id;
   impl_->bytes +=
       pieces.size() * sizeof(BezierTriangle) + user->subPatches.size() * sizeof(BezierSubPatch);
+  if (!user->flatPieces.empty()) {
+    TriangleMesh flat;
+    flat.positions.reserve(3 * user->flatPieces.size());
+    flat.triangles.reserve(user->flatPieces.size());
+    for (uint32_t p : user->flatPieces) {
+      const BezierTriangle& piece = pieces[p];
+      const uint32_t first = uint32_t(flat.positions.size());
+      flat.positions.push_back(piece.at(4, 0, 0));
+      flat.positions.push_back(piece.at(0, 4, 0));
+      flat.positions.push_back(piece.at(0, 0, 4));
+      flat.triangles.push_back({first, first + 1, first + 2});
+    }
+    user->flatGeometry = addTriangles(flat);
+    if (impl_->flatOwner.size() <= user->flatGeometry)
+      impl_->flatOwner.resize(user->flatGeometry + 1, nullptr);
+    impl_->flatOwner[user->flatGeometry] = user.get();
+    impl_->bytes += user->flatPieces.size() * sizeof(uint32_t);
+  }
   impl_->bezierGeometries.push_back(std::move(user));
   return id;
 }
@@ -471,6 +532,13 @@ RayHit Accel::intersect(const Ray& ray) const {
                      rayhit.hit.primID);
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive)
     return patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID);
+  if (rayhit.hit.geomID < impl_->flatOwner.size() && impl_->flatOwner[rayhit.hit.geomID]) {
+    // A flat Bézier piece traced as its triangle: the hit is the piece's, at the same (u, v).
+    const BezierGeometry& g = *impl_->flatOwner[rayhit.hit.geomID];
+    const uint32_t piece = g.flatPieces[rayhit.hit.primID];
+    return bezierHit((*g.pieces)[piece], flatPieceHit((*g.pieces)[piece], ray, rayhit), g.id,
+                     piece);
+  }
   hit.t = rayhit.ray.tfar;
   hit.geometry = rayhit.hit.geomID;
   hit.primitive = rayhit.hit.primID;

@@ -33,6 +33,21 @@ constexpr int index3(int j, int k) {
 
 }  // namespace
 
+bool BezierTriangle::isAffine(double relative) const {
+  const Vec3& p0 = at(4, 0, 0);
+  const Vec3& p1 = at(0, 4, 0);
+  const Vec3& p2 = at(0, 0, 4);
+  const double tolerance = relative * (bounds.hi - bounds.lo).norm();
+  if (!(tolerance >= 0.0)) return false;
+  for (int k = 0; k <= kDegree; ++k)
+    for (int j = 0; j + k <= kDegree; ++j) {
+      const int i = kDegree - j - k;
+      const Vec3 linear = (double(i) * p0 + double(j) * p1 + double(k) * p2) / double(kDegree);
+      if (!((at(i, j, k) - linear).cwiseAbs().maxCoeff() <= tolerance)) return false;
+    }
+  return true;
+}
+
 Vec3 BezierTriangle::position(double u, double v) const {
   const auto basis = bernstein<4>(1.0 - u - v, u, v);
   Vec3 sum = Vec3::Zero();

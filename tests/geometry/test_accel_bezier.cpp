@@ -167,6 +167,78 @@ TEST(Accel, BezierSubPatchesAgreeWithTheDirectIntersector) {
   EXPECT_GE(hitCount, compared);
 }
 
+// A rendering structure traces the flat pieces (a triangle, linearly parametrised) as native
+// triangles: each hit still reports the piece, its (u, v) and its normal, in double precision,
+// and a nearer curved piece still wins.
+TEST(Accel, FlatBezierPiecesAreTracedAsTheirTriangles) {
+  enableFlushToZero();
+  std::vector<BezierTriangle> pieces = scatteredPieces();
+  Pcg32 rng(71);
+  const size_t curved = pieces.size();
+  for (int i = 0; i < 12; ++i) {
+    const Vec3 base(2.0 * rng.nextDouble(), 2.0 * rng.nextDouble(), 2.0 * rng.nextDouble());
+    BezierTriangle piece =
+        fixtures::flatPiece(base, base + Vec3(0.6, 0.2, -0.3), base + Vec3(-0.1, 0.5, 0.4));
+    piece.orientation = i % 2 ? 1.0 : -1.0;
+    piece.triangle = uint32_t(curved + size_t(i));
+    pieces.push_back(piece);
+  }
+  for (size_t p = 0; p < pieces.size(); ++p) EXPECT_EQ(pieces[p].isAffine(1e-12), p >= curved);
+  Accel accel;
+  const uint32_t id = accel.addBezierTriangles(pieces);
+  accel.commit();
+  int flatHits = 0, curvedHits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 target(3.0 * rng.nextDouble() - 0.5, 3.0 * rng.nextDouble() - 0.5,
+                      3.0 * rng.nextDouble() - 0.5);
+    const Vec3 d = uniformDirection(rng);
+    const Ray ray{target - 4.0 * d, d, 0.0, 4.0 + 4.0 * rng.nextDouble()};
+    BezierHit best;
+    uint32_t bestPiece = ~0u;
+    for (uint32_t p = 0; p < pieces.size(); ++p) {
+      BezierHit h;
+      if (intersectBezierTriangle(pieces[p], ray.origin, ray.direction, ray.tnear, ray.tfar, h) &&
+          h.t < best.t)
+        best = h, bestPiece = p;
+    }
+    const RayHit hit = accel.intersect(ray);
+    // A ray within float round-off of a flat piece's edge may see it one way and not the other.
+    if (hit.valid() != (bestPiece != ~0u) ||
+        (hit.valid() && hit.primitive != bestPiece && std::abs(hit.t - best.t) < 1e-5)) {
+      const double u = hit.valid() ? hit.u : best.u, v = hit.valid() ? hit.v : best.v;
+      EXPECT_LT(std::min({u, v, 1.0 - u - v}), 1e-5) << i;
+      continue;
+    }
+    EXPECT_EQ(accel.occluded(ray), hit.valid()) << i;
+    if (!hit.valid()) continue;
+    EXPECT_EQ(hit.geometry, id);
+    ASSERT_EQ(hit.primitive, bestPiece) << i;
+    (bestPiece >= curved ? flatHits : curvedHits)++;
+    // In double precision again: as close as the direct intersector's Newton gets.
+    EXPECT_NEAR(hit.t, best.t, 1e-9 * (1.0 + best.t)) << i;
+    EXPECT_NEAR(hit.u, best.u, 1e-9) << i;
+    EXPECT_NEAR(hit.v, best.v, 1e-9) << i;
+    EXPECT_NEAR((hit.geometricNormal - pieces[bestPiece].normal(best.u, best.v)).norm(), 0.0,
+                1e-12);
+  }
+  EXPECT_GT(flatHits, 1000);
+  EXPECT_GT(curvedHits, 1000);
+}
+
+// isAffine holds at any scale and fails for a control point off the linear one by more than the
+// tolerance.
+TEST(BezierTriangle, AffineIsScaleInvariantAndStrict) {
+  for (double scale : {1e-6, 1.0, 1e6}) {
+    BezierTriangle piece =
+        fixtures::flatPiece(scale * Vec3(1, 2, 3), scale * Vec3(2, 2, 3.5), scale * Vec3(1, 3, 2));
+    EXPECT_TRUE(piece.isAffine(1e-12)) << scale;
+    piece.at(2, 1, 1) += scale * Vec3(0, 0, 1e-9);
+    piece.updateBounds();
+    EXPECT_FALSE(piece.isAffine(1e-12)) << scale;
+    EXPECT_TRUE(piece.isAffine(1e-8)) << scale;
+  }
+}
+
 TEST(Accel, BezierPieceOrientationSetsTheNormal) {
   BezierTriangle piece = fixtures::flatPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
   std::vector<BezierTriangle> up{piece};

@@ -38,6 +38,10 @@ struct BezierTriangle {
   Vec3 normal(double u, double v) const;
   /// Recomputes `bounds` from the control points.
   void updateBounds();
+  /// True where the piece is its corner triangle, parametrised linearly: every control point
+  /// b_ijk lies within `relative` times the box's diagonal of (i·b_400 + j·b_040 + k·b_004)/4.
+  /// Then b(u, v) is the triangle (b_400, b_040, b_004) at barycentric coordinates (u, v).
+  bool isAffine(double relative) const;
 };
 
 }  // namespace quadtri
