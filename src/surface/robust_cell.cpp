@@ -139,6 +139,7 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
   cell.planes = planes;
   cell.tolerance = tolerance;
   const size_t n = planes.size();
+  cell.vertices.reserve(2 * n);  // a simple polytope of n faces has at most 2n − 4 vertices
   const double merge2 = 16.0 * tolerance * tolerance;  // vertices within 4 tolerances are one
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
