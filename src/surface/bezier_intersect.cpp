@@ -273,23 +273,21 @@ class Tracer {
 
   bool valid() const { return std::isfinite(marginXY_) && std::isfinite(marginZ_); }
 
-  // Searches the region `level` 4-splits down `path` (BezierSubPatch), the whole piece by default.
   // Searches the whole piece, or the region given to the constructor.
   void run(Found& found) {
     Node* stack = stack_;
     stack[0].cu[0] = 0, stack[0].cv[0] = 0;
     stack[0].cu[1] = 1, stack[0].cv[1] = 0;
     stack[0].cu[2] = 0, stack[0].cv[2] = 1;
-    const int level = region_ ? region_->level : 0;
-    if (level > 0) {
+    const int depth = region_ ? region_->depth : 0;
+    if (depth > 0) {
       region_->corners(stack[0].cu, stack[0].cv);
       regionNet(root_, stack[0].cu, stack[0].cv, stack[0].net);
     } else {
       stack[0].net = root_;
     }
     // Rendering's last level is 1/1024 of the piece, whatever region the search starts from.
-    const int maxDepth =
-        mode_ == Mode::All ? kMaxDepthAll : std::max(kMaxDepthRender - 2 * level, 4);
+    const int maxDepth = mode_ == Mode::All ? kMaxDepthAll : std::max(kMaxDepthRender - depth, 4);
     const Box rootBox = netBox(stack[0].net);
     if (culled(rootBox, found) || separated(stack[0].net)) return;
     stack[0].depth = 0;
@@ -573,6 +571,55 @@ size_t intersectBezierTriangleAll(const BezierTriangle& piece, const Vec3& o, co
   if (!traceBezier(piece, o, d, tmin, tmax, Mode::All, found)) return 0;
   hits.insert(hits.end(), found.all, found.all + found.count);
   return size_t(found.count);
+}
+
+std::array<BezierTriangle, 2> bisectBezierTriangle(const BezierTriangle& piece, int corner) {
+  // Rotated so that `corner` comes first (a cyclic turn keeps the orientation): the new point
+  // with exponents (e0, e1, e2) on the new corners is the old one with exponent e_m on old
+  // corner (corner + m) mod 3.
+  Net net;
+  for (int k = 0; k <= 4; ++k)
+    for (int j = 0; j + k <= 4; ++j) {
+      const int e[3] = {4 - j - k, j, k};
+      int old[3];
+      for (int m = 0; m < 3; ++m) old[(corner + m) % 3] = e[m];
+      const Vec3& p = piece.b[size_t(BezierTriangle::index(old[1], old[2]))];
+      net[size_t(BezierTriangle::index(j, k))] = {p.x(), p.y(), p.z()};
+    }
+  Net halves[2];
+  bisect(net, halves[0], halves[1]);
+  std::array<BezierTriangle, 2> out;
+  for (size_t h = 0; h < 2; ++h) {
+    BezierTriangle& half = out[h];
+    for (int i = 0; i < BezierTriangle::kPoints; ++i) {
+      const P3& p = halves[h][size_t(i)];
+      half.b[size_t(i)] = Vec3(p.x, p.y, p.z);
+    }
+    half.orientation = piece.orientation;
+    half.triangle = piece.triangle;
+    half.piece = piece.piece;
+    half.updateBounds();
+  }
+  return out;
+}
+
+BezierTriangle bezierRegion(const BezierTriangle& piece, const double* cu, const double* cv) {
+  Net net, sub;
+  for (int i = 0; i < BezierTriangle::kPoints; ++i) {
+    const Vec3& p = piece.b[size_t(i)];
+    net[size_t(i)] = {p.x(), p.y(), p.z()};
+  }
+  regionNet(net, cu, cv, sub);
+  BezierTriangle out;
+  for (int i = 0; i < BezierTriangle::kPoints; ++i) {
+    const P3& p = sub[size_t(i)];
+    out.b[size_t(i)] = Vec3(p.x, p.y, p.z);
+  }
+  out.orientation = piece.orientation;
+  out.triangle = piece.triangle;
+  out.piece = piece.piece;
+  out.updateBounds();
+  return out;
 }
 
 std::array<BezierTriangle, 4> subdivideBezierTriangle(const BezierTriangle& piece) {

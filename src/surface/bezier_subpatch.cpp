@@ -78,15 +78,20 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
 
 enum class Solved { Hit, Candidate, None, Unknown };
 
-// Whether (u, v) lies in the closed region `levels` 4-splits down `path` (no slack).
-bool inRegion(int path, int levels, double u, double v) {
-  double cu[3] = {0, 1, 0}, cv[3] = {0, 0, 1};
-  for (int l = 0; l < levels; ++l) childCorners((path >> (2 * l)) & 3, cu, cv);
-  const double e1u = cu[1] - cu[0], e1v = cv[1] - cv[0], e2u = cu[2] - cu[0], e2v = cv[2] - cv[0];
+// Whether (u, v) lies in the closed triangle with corners (cu, cv) (no slack).
+bool inTriangle(const double* cu, const double* cv, double u, double v) {
+  const double e1u = cu[1] - cu[0], e1v = cv[1] - cv[0];
+  const double e2u = cu[2] - cu[0], e2v = cv[2] - cv[0];
   const double ru = u - cu[0], rv = v - cv[0];
   const double det = e1u * e2v - e1v * e2u;
   const double a = (ru * e2v - rv * e2u) / det, b = (e1u * rv - e1v * ru) / det;
   return a >= 0.0 && b >= 0.0 && a + b <= 1.0;
+}
+
+bool inParent(const BezierSubPatch& sub, double u, double v) {
+  double pu[3], pv[3];
+  sub.parentCorners(pu, pv);
+  return inTriangle(pu, pv, u, v);
 }
 
 inline double dotf(const Vec3& a, const float* b) {
@@ -146,8 +151,7 @@ Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, con
     // A root outside the region: none in it when the parent holds that root and meets the ray
     // at most once.
     const double dp = dotf(d, sub.parentAxis), sinParent = double(sub.parentSinCone);
-    if (injective && dp * dp > sinParent * sinParent * d.squaredNorm() &&
-        inRegion(sub.path, sub.level - 1, u, v))
+    if (injective && dp * dp > sinParent * sinParent * d.squaredNorm() && inParent(sub, u, v))
       return Solved::None;
     return Solved::Unknown;
   }
@@ -165,11 +169,14 @@ inline void storeFloat(const Vec3& v, float* out) {
 // The sub-patch of `net` (the region's own net) with its box, prism and cone. Its directions are
 // rounded to float first, and its bounds computed with the rounded ones, then rounded outwards:
 // the prism holds the control points exactly for the directions it stores.
-BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int level, int path) {
+BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int depth, const double* cu,
+                            const double* cv) {
   BezierSubPatch s;
   s.piece = piece;
-  s.level = uint8_t(level);
-  s.path = uint16_t(path);
+  s.depth = uint8_t(depth);
+  constexpr double kScale = double(1 << BezierSubPatch::kMaxDepth);
+  for (int c = 0; c < 3; ++c)
+    s.cu[c] = uint16_t(cu[c] * kScale), s.cv[c] = uint16_t(cv[c] * kScale);
   Bounds3 box;
   for (const Vec3& p : net.b) box.extend(p);
   for (int c = 0; c < 3; ++c) s.lo[c] = floatDown(box.lo[c]), s.hi[c] = floatUp(box.hi[c]);
@@ -235,9 +242,12 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int level
 
 }  // namespace
 
-void BezierSubPatch::corners(double* cu, double* cv) const {
-  cu[0] = 0, cv[0] = 0, cu[1] = 1, cv[1] = 0, cu[2] = 0, cv[2] = 1;
-  for (int l = 0; l < level; ++l) childCorners((path >> (2 * l)) & 3, cu, cv);
+void BezierSubPatch::corners(double* u, double* v) const {
+  for (int c = 0; c < 3; ++c) u[c] = cu[c] * kCornerUnit, v[c] = cv[c] * kCornerUnit;
+}
+
+void BezierSubPatch::parentCorners(double* u, double* v) const {
+  for (int c = 0; c < 3; ++c) u[c] = parentU[c] * kCornerUnit, v[c] = parentV[c] * kCornerUnit;
 }
 
 Bounds3 BezierSubPatch::bounds() const {
@@ -247,10 +257,41 @@ Bounds3 BezierSubPatch::bounds() const {
   return b;
 }
 
+namespace {
+
+// A region's box holding more than this many times the area of its corner triangle is split.
+constexpr double kBoxPerArea = 6.0;
+// A corner triangle with (longest side)² / (2·area) above this is bisected across that side
+// (an equilateral one has 1.15, a right isosceles one 2).
+constexpr double kElongated = 2.5;
+
+double boxArea(const BezierSubPatch& s) {
+  const double dx = double(s.hi[0]) - s.lo[0], dy = double(s.hi[1]) - s.lo[1];
+  const double dz = double(s.hi[2]) - s.lo[2];
+  return 2.0 * (dx * dy + dy * dz + dz * dx);
+}
+
+// The corner triangle of a region's net: its corners and area.
+struct CornerTriangle {
+  Vec3 p[3];
+  double area = 0.0;
+};
+
+CornerTriangle cornerTriangle(const BezierTriangle& net) {
+  CornerTriangle c;
+  c.p[0] = net.at(4, 0, 0);
+  c.p[1] = net.at(0, 4, 0);
+  c.p[2] = net.at(0, 0, 4);
+  c.area = 0.5 * (c.p[1] - c.p[0]).cross(c.p[2] - c.p[0]).norm();
+  return c;
+}
+
+}  // namespace
+
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees, size_t budget) {
   if (budget == 0) budget = std::max<size_t>(65536, 8 * pieces.size());
-  constexpr size_t kMaxRegions = size_t(1) << (2 * BezierSubPatch::kMaxLevel);
+  constexpr size_t kMaxRegions = size_t(1) << BezierSubPatch::kMaxDepth;
   // Each piece's share of the budget, split among its regions on its own (in parallel, in a
   // fixed slot each, so the result does not depend on the threads).
   const size_t share =
@@ -264,42 +305,92 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
         struct Item {
           BezierTriangle net;
           BezierSubPatch sub;
+          double need = 0.0;  // above 1: worth splitting
+          int longest = -1;   // the corner opposite the side to bisect; -1: split in 4
         };
         std::vector<Item> items;
         std::vector<size_t> heap;
+        const auto makeItem = [sinMax](const BezierTriangle& net, uint32_t p, int depth,
+                                       const double* cu, const double* cv) {
+          Item item;
+          item.net = net;
+          item.sub = makeSubPatch(item.net, p, depth, cu, cv);
+          const CornerTriangle c = cornerTriangle(item.net);
+          double side2 = 0.0;
+          for (int k = 0; k < 3; ++k) {
+            const double l2 = (c.p[(k + 2) % 3] - c.p[(k + 1) % 3]).squaredNorm();
+            if (l2 > side2) side2 = l2, item.longest = k;
+          }
+          const double boxRatio = c.area > 0.0 ? boxArea(item.sub) / (2.0 * c.area) : kInfinity;
+          if (!(side2 > kElongated * 2.0 * c.area)) item.longest = -1;
+          // A box too large for its region shrinks by bisection only: split in 4, a region's
+          // children have its shape, and their boxes together its box's area.
+          item.need = std::max(double(item.sub.sinCone) / sinMax,
+                               item.longest >= 0 ? boxRatio / kBoxPerArea : 0.0);
+          return item;
+        };
         for (size_t p = range.begin(); p != range.end(); ++p) {
           items.clear();
           heap.clear();
-          items.push_back({pieces[p], makeSubPatch(pieces[p], uint32_t(p), 0, 0)});
-          // The widest cone first, while the share lasts.
-          auto splittable = [&](size_t i) {
-            return items[i].sub.level < BezierSubPatch::kMaxLevel && items[i].sub.sinCone > sinMax;
+          const double whole[2][3] = {{0, 1, 0}, {0, 0, 1}};
+          items.push_back(makeItem(pieces[p], uint32_t(p), 0, whole[0], whole[1]));
+          const auto cost = [&](size_t i) { return items[i].longest >= 0 ? 1 : 2; };
+          const auto splittable = [&](size_t i) {
+            return items[i].sub.depth + cost(i) <= BezierSubPatch::kMaxDepth && items[i].need > 1.0;
           };
-          auto narrower = [&](size_t a, size_t b) {
-            const float ca = items[a].sub.sinCone, cb = items[b].sub.sinCone;
-            return ca < cb || (ca == cb && a > b);
+          const auto lessNeedy = [&](size_t a, size_t b) {
+            return items[a].need < items[b].need || (items[a].need == items[b].need && a > b);
           };
           if (splittable(0)) heap.push_back(0);
-          while (!heap.empty() && items.size() + 3 <= share) {
-            std::pop_heap(heap.begin(), heap.end(), narrower);
+          while (!heap.empty()) {
+            std::pop_heap(heap.begin(), heap.end(), lessNeedy);
             const size_t at = heap.back();
             heap.pop_back();
+            const int step = cost(at), children = step == 1 ? 2 : 4;
+            if (items.size() + size_t(children - 1) > share) continue;
             const BezierSubPatch parent = items[at].sub;
-            const std::array<BezierTriangle, 4> children = subdivideBezierTriangle(items[at].net);
-            for (int m = 0; m < 4; ++m) {
+            double pu[3], pv[3];
+            parent.corners(pu, pv);
+            // The children's corners in the piece's (u, v), and their nets from the parent's.
+            double cu[4][3], cv[4][3];
+            std::array<BezierTriangle, 4> nets;
+            if (children == 2) {
+              // Across the side opposite corner r at its midpoint m: (m, c_r, c_r+1) and
+              // (m, c_r+2, c_r), both with the parent's orientation.
+              const int r = items[at].longest, r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+              const int order[2][3] = {{-1, r, r1}, {-1, r2, r}};
+              for (int m = 0; m < 2; ++m)
+                for (int c = 0; c < 3; ++c) {
+                  const int k = order[m][c];
+                  cu[m][c] = k < 0 ? 0.5 * (pu[r1] + pu[r2]) : pu[k];
+                  cv[m][c] = k < 0 ? 0.5 * (pv[r1] + pv[r2]) : pv[k];
+                }
+              const std::array<BezierTriangle, 2> halves = bisectBezierTriangle(items[at].net, r);
+              nets[0] = halves[0];
+              nets[1] = halves[1];
+            } else {
+              nets = subdivideBezierTriangle(items[at].net);
+              for (int m = 0; m < 4; ++m) {
+                std::copy(pu, pu + 3, cu[m]);
+                std::copy(pv, pv + 3, cv[m]);
+                childCorners(m, cu[m], cv[m]);
+              }
+            }
+            for (int m = 0; m < children; ++m) {
               const size_t slot = m == 0 ? at : items.size();
-              Item child{children[size_t(m)],
-                         makeSubPatch(children[size_t(m)], parent.piece, parent.level + 1,
-                                      parent.path | (m << (2 * parent.level)))};
+              Item child =
+                  makeItem(nets[size_t(m)], parent.piece, parent.depth + step, cu[m], cv[m]);
               std::copy(parent.axis, parent.axis + 3, child.sub.parentAxis);
               child.sub.parentSinCone = parent.sinCone;
+              std::copy(parent.cu, parent.cu + 3, child.sub.parentU);
+              std::copy(parent.cv, parent.cv + 3, child.sub.parentV);
               if (m == 0)
                 items[at] = child;
               else
                 items.push_back(child);
               if (splittable(slot)) {
                 heap.push_back(slot);
-                std::push_heap(heap.begin(), heap.end(), narrower);
+                std::push_heap(heap.begin(), heap.end(), lessNeedy);
               }
             }
           }

@@ -29,6 +29,12 @@ std::vector<BezierTriangle> curvedPieces() {
   }
   pieces.push_back(paraboloidPiece(Vec2(-1, -1), Vec2(1.5, -1), Vec2(-1, 1.5)));
   pieces.push_back(paraboloidPiece(Vec2(0.2, 0.1), Vec2(2.5, 0.3), Vec2(0.5, 2.0)));
+  // Slivers along a diagonal (as CAD meshes have), whose boxes only bisection shrinks.
+  for (int i = 0; i < 2; ++i) {
+    BezierTriangle sliver =
+        bumpyPiece(Vec3(0, 0, 0), Vec3(2.0, 1.5, 1.0 + i), Vec3(0.05, 0.12, -0.03), 0.02, rng);
+    pieces.push_back(sliver);
+  }
   // A degenerate piece: corner 2 collapsed onto corner 0.
   BezierTriangle collapsed = bumpyPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 0.2, rng);
   for (int k = 0; k <= 4; ++k)
@@ -59,11 +65,11 @@ TEST(BezierSubPatch, RegionsTileEveryPiece) {
   std::vector<int> count(pieces.size(), 0);
   for (const BezierSubPatch& s : subs) {
     ASSERT_LT(s.piece, pieces.size());
-    EXPECT_LE(int(s.level), BezierSubPatch::kMaxLevel);
+    EXPECT_LE(int(s.depth), BezierSubPatch::kMaxDepth);
     double cu[3], cv[3];
     s.corners(cu, cv);
     const double a = 0.5 * ((cu[1] - cu[0]) * (cv[2] - cv[0]) - (cv[1] - cv[0]) * (cu[2] - cu[0]));
-    EXPECT_DOUBLE_EQ(a, 0.5 / double(1 << (2 * s.level)));  // positive: the piece's orientation
+    EXPECT_DOUBLE_EQ(a, 0.5 / double(1 << s.depth));  // positive: the piece's orientation
     area[s.piece] += a;
     ++count[s.piece];
   }
@@ -71,21 +77,25 @@ TEST(BezierSubPatch, RegionsTileEveryPiece) {
     EXPECT_NEAR(area[p], 0.5, 1e-15) << p;
     EXPECT_GE(count[p], 1) << p;
   }
-  // The strongly curved pieces are split, and the degenerate one to the last level.
+  // The strongly curved pieces are split, the slivers bisected (an odd depth), and the
+  // degenerate one to the last level.
   EXPECT_GT(subs.size(), 4 * pieces.size());
+  int bisected = 0;
+  for (const BezierSubPatch& s : subs) bisected += s.depth % 2;
+  EXPECT_GT(bisected, 0);
   int deepest = 0;
   for (const BezierSubPatch& s : subs)
-    if (s.piece == pieces.size() - 1) deepest = std::max(deepest, int(s.level));
-  EXPECT_EQ(deepest, BezierSubPatch::kMaxLevel);
-  // A budget bounds the count, shared evenly by the pieces (4 each: one split); the regions still
-  // tile every piece.
+    if (s.piece == pieces.size() - 1) deepest = std::max(deepest, int(s.depth));
+  EXPECT_GE(deepest, BezierSubPatch::kMaxDepth - 1);
+  // A budget bounds the count, shared evenly by the pieces (4 each: one 4-split or up to three
+  // bisections); the regions still tile every piece.
   const std::vector<BezierSubPatch> few = bezierSubPatches(pieces, 10.0, 4 * pieces.size() + 3);
   EXPECT_LE(few.size(), 4 * pieces.size());
   EXPECT_GT(few.size(), pieces.size());
   std::vector<double> fewArea(pieces.size(), 0.0);
   for (const BezierSubPatch& s : few) {
-    EXPECT_LE(s.level, 1);
-    fewArea[s.piece] += 0.5 / double(1 << (2 * s.level));
+    EXPECT_LE(s.depth, 3);
+    fewArea[s.piece] += 0.5 / double(1 << s.depth);
   }
   for (size_t p = 0; p < pieces.size(); ++p) EXPECT_DOUBLE_EQ(fewArea[p], 0.5) << p;
   // The result is the same whatever the threads did.
@@ -93,8 +103,11 @@ TEST(BezierSubPatch, RegionsTileEveryPiece) {
   ASSERT_EQ(again.size(), subs.size());
   for (size_t i = 0; i < subs.size(); ++i) {
     EXPECT_EQ(again[i].piece, subs[i].piece);
-    EXPECT_EQ(again[i].level, subs[i].level);
-    EXPECT_EQ(again[i].path, subs[i].path);
+    EXPECT_EQ(again[i].depth, subs[i].depth);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(again[i].cu[c], subs[i].cu[c]);
+      EXPECT_EQ(again[i].cv[c], subs[i].cv[c]);
+    }
   }
   // Each region's corners are the piece's points: corner 0 is the prism's base.
   for (const BezierSubPatch& s : subs) {
@@ -174,13 +187,14 @@ TEST(BezierSubPatch, ParentConeCertifiesTheParentRegion) {
   int certified = 0;
   constexpr int kSteps = 12;
   for (const BezierSubPatch& s : subs) {
-    if (s.level == 0) {
+    if (s.depth == 0) {
       EXPECT_GT(s.parentSinCone, 1.0f);
       continue;
     }
     if (s.parentSinCone > 1.0f) continue;
     BezierSubPatch parent = s;
-    parent.level = uint8_t(s.level - 1);
+    std::copy(s.parentU, s.parentU + 3, parent.cu);
+    std::copy(s.parentV, s.parentV + 3, parent.cv);
     const BezierTriangle& piece = pieces[s.piece];
     const Vec3 axis = vec(s.parentAxis).normalized();
     for (int r = 0; r < 4; ++r) {

@@ -78,12 +78,23 @@ size_t intersectBezierTriangleAll(const BezierTriangle& piece, const Vec3& o, co
 /// c0 + u'(c1 − c0) + v'(c2 − c0) for its corners c0, c1, c2 above.
 std::array<BezierTriangle, 4> subdivideBezierTriangle(const BezierTriangle& piece);
 
-/// A region of a piece that rendering traces as one primitive (accel.cpp): the sub-triangle
-/// reached by `level` midpoint 4-splits (subdivideBezierTriangle's numbering), with what rejects
-/// most rays at the cost of a few dot products and tells when one Newton solve is exact.
+/// The two halves of `piece` across the side opposite `corner` (0, 1 or 2), at its midpoint m:
+/// the nets over (m, c, c+1) and (m, c+2, c) in the piece's corners c = `corner`, c+1, c+2
+/// (mod 3), both with the piece's orientation.
+std::array<BezierTriangle, 2> bisectBezierTriangle(const BezierTriangle& piece, int corner);
+
+/// The net of the part of `piece` over the sub-triangle with corners (cu[m], cv[m]) of its
+/// domain (blossoms by de Casteljau steps at the corners), in those corners' order.
+BezierTriangle bezierRegion(const BezierTriangle& piece, const double* cu, const double* cv);
+
+/// A region of a piece that rendering traces as one primitive (accel.cpp): a sub-triangle of the
+/// piece's domain reached by midpoint 4-splits and, for elongated ones, bisections of the longest
+/// edge, with what rejects most rays at the cost of a few dot products and tells when one Newton
+/// solve is exact.
 /// Directions and bounds are floats, computed so that they hold for the rounded directions.
 struct BezierSubPatch {
-  static constexpr int kMaxLevel = 5;
+  /// Splits from the piece, counted in bisections (a midpoint 4-split is two).
+  static constexpr int kMaxDepth = 10;
   /// The prism that holds the region's control points: corner 0 `p0`, the corner triangle's
   /// unit normal `n`, and g1, g2 such that (x − p0)·g1 and (x − p0)·g2 are the corner triangle's
   /// barycentric coordinates 1 and 2 of x's projection along n. Every control point has
@@ -105,19 +116,29 @@ struct BezierSubPatch {
   float parentAxis[3] = {};
   float parentSinCone = 2.0f;
   float lo[3] = {}, hi[3] = {};  ///< box of the region's control points
-  uint32_t piece = 0;            ///< the piece's index
-  uint8_t level = 0;             ///< 4-splits from the piece (0: the whole piece)
-  uint16_t path = 0;             ///< the child taken at split l in bits 2l and 2l + 1
+  /// The region's corners in the piece's (u, v), and its parent's (both the whole domain for
+  /// the piece itself), in units of 2^-kMaxDepth: every corner a split makes is a dyadic
+  /// fraction with at most kMaxDepth bits.
+  static constexpr double kCornerUnit = 1.0 / double(1 << kMaxDepth);
+  uint16_t cu[3] = {0, 1 << kMaxDepth, 0}, cv[3] = {0, 0, 1 << kMaxDepth};
+  uint16_t parentU[3] = {0, 1 << kMaxDepth, 0}, parentV[3] = {0, 0, 1 << kMaxDepth};
+  uint32_t piece = 0;  ///< the piece's index
+  uint8_t depth = 0;   ///< splits from the piece, in bisections (0: the whole piece)
 
   /// The region's corners in the piece's (u, v).
-  void corners(double* cu, double* cv) const;
+  void corners(double* u, double* v) const;
+  /// Its parent's.
+  void parentCorners(double* u, double* v) const;
   Bounds3 bounds() const;
 };
 
 /// The sub-patches that rendering traces in place of `pieces`: the pieces, then, while fewer
-/// than `budget` (0: the larger of 65536 and 8 per piece), the region with the widest derivative
-/// cone split in 4, down to BezierSubPatch::kMaxLevel splits or a cone of `coneDegrees`. The
-/// narrower the cone, the fewer rays meet a region where one Newton solve does not settle it.
+/// than `budget` (0: the larger of 65536 and 8 per piece), the neediest region split, down to
+/// BezierSubPatch::kMaxDepth: one whose derivative cone is wider than `coneDegrees` (the
+/// narrower the cone, the fewer rays meet a region where one Newton solve does not settle it),
+/// or whose box has more than 6 times the area of its corner triangle (a ray enters such a box
+/// far more often than it meets the region). An elongated region is bisected across its longest
+/// edge, which shrinks its box, others split in 4.
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees = 5.0, size_t budget = 0);
 
