@@ -573,6 +573,24 @@ size_t intersectBezierTriangleAll(const BezierTriangle& piece, const Vec3& o, co
   return size_t(found.count);
 }
 
+namespace {
+
+// The piece over `net`, with `like`'s orientation, triangle and piece number, and its bounds.
+BezierTriangle pieceOfNet(const Net& net, const BezierTriangle& like) {
+  BezierTriangle out;
+  for (int i = 0; i < BezierTriangle::kPoints; ++i) {
+    const P3& p = net[size_t(i)];
+    out.b[size_t(i)] = Vec3(p.x, p.y, p.z);
+  }
+  out.orientation = like.orientation;
+  out.triangle = like.triangle;
+  out.piece = like.piece;
+  out.updateBounds();
+  return out;
+}
+
+}  // namespace
+
 std::array<BezierTriangle, 2> bisectBezierTriangle(const BezierTriangle& piece, int corner) {
   // Rotated so that `corner` comes first (a cyclic turn keeps the orientation): the new point
   // with exponents (e0, e1, e2) on the new corners is the old one with exponent e_m on old
@@ -588,38 +606,7 @@ std::array<BezierTriangle, 2> bisectBezierTriangle(const BezierTriangle& piece, 
     }
   Net halves[2];
   bisect(net, halves[0], halves[1]);
-  std::array<BezierTriangle, 2> out;
-  for (size_t h = 0; h < 2; ++h) {
-    BezierTriangle& half = out[h];
-    for (int i = 0; i < BezierTriangle::kPoints; ++i) {
-      const P3& p = halves[h][size_t(i)];
-      half.b[size_t(i)] = Vec3(p.x, p.y, p.z);
-    }
-    half.orientation = piece.orientation;
-    half.triangle = piece.triangle;
-    half.piece = piece.piece;
-    half.updateBounds();
-  }
-  return out;
-}
-
-BezierTriangle bezierRegion(const BezierTriangle& piece, const double* cu, const double* cv) {
-  Net net, sub;
-  for (int i = 0; i < BezierTriangle::kPoints; ++i) {
-    const Vec3& p = piece.b[size_t(i)];
-    net[size_t(i)] = {p.x(), p.y(), p.z()};
-  }
-  regionNet(net, cu, cv, sub);
-  BezierTriangle out;
-  for (int i = 0; i < BezierTriangle::kPoints; ++i) {
-    const P3& p = sub[size_t(i)];
-    out.b[size_t(i)] = Vec3(p.x, p.y, p.z);
-  }
-  out.orientation = piece.orientation;
-  out.triangle = piece.triangle;
-  out.piece = piece.piece;
-  out.updateBounds();
-  return out;
+  return {pieceOfNet(halves[0], piece), pieceOfNet(halves[1], piece)};
 }
 
 std::array<BezierTriangle, 4> subdivideBezierTriangle(const BezierTriangle& piece) {
@@ -632,15 +619,7 @@ std::array<BezierTriangle, 4> subdivideBezierTriangle(const BezierTriangle& piec
   for (size_t m = 0; m < 4; ++m) {
     Net sub;
     child(net, int(m), sub);
-    BezierTriangle& child = out[m];
-    for (int i = 0; i < BezierTriangle::kPoints; ++i) {
-      const P3& p = sub[size_t(i)];
-      child.b[size_t(i)] = Vec3(p.x, p.y, p.z);
-    }
-    child.orientation = piece.orientation;
-    child.triangle = piece.triangle;
-    child.piece = piece.piece;
-    child.updateBounds();
+    out[m] = pieceOfNet(sub, piece);
   }
   return out;
 }

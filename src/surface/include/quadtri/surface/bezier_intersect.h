@@ -83,10 +83,6 @@ std::array<BezierTriangle, 4> subdivideBezierTriangle(const BezierTriangle& piec
 /// (mod 3), both with the piece's orientation.
 std::array<BezierTriangle, 2> bisectBezierTriangle(const BezierTriangle& piece, int corner);
 
-/// The net of the part of `piece` over the sub-triangle with corners (cu[m], cv[m]) of its
-/// domain (blossoms by de Casteljau steps at the corners), in those corners' order.
-BezierTriangle bezierRegion(const BezierTriangle& piece, const double* cu, const double* cv);
-
 /// A region of a piece that rendering traces as one primitive (accel.cpp): a sub-triangle of the
 /// piece's domain reached by midpoint 4-splits and, for elongated ones, bisections of the longest
 /// edge, with what rejects most rays at the cost of a few dot products and tells when one Newton
