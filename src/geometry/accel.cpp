@@ -201,6 +201,11 @@ void bezierBounds(const RTCBoundsFunctionArguments* args) {
   releaseEdge(&g->margin);
 }
 
+// The (u, v) the ray leaves the piece from, when it was spawned from a hit of that piece.
+const Vec2* leavesFrom(const Ray& ray, unsigned geometry, unsigned piece) {
+  return ray.fromGeometry == geometry && ray.fromPrimitive == piece ? &ray.fromUV : nullptr;
+}
+
 void intersectBezier(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto* ctx = reinterpret_cast<TraceContext*>(args->context);
@@ -232,7 +237,7 @@ void intersectBezier(const RTCIntersectFunctionNArguments* args) {
     primitive = sub.piece;
     const BezierTriangle& piece = pieces[primitive];
     if (!intersectBezierSubPatch(piece, sub, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                                 tmax, h))
+                                 tmax, h, leavesFrom(*ctx->ray, args->geomID, primitive)))
       return;
   }
   ctx->patchT = h.t;
@@ -264,7 +269,7 @@ void occludedBezier(const RTCOccludedFunctionNArguments* args) {
     const BezierSubPatch& sub = g->subPatches[args->primID];
     const BezierTriangle& piece = pieces[sub.piece];
     hit = occludesBezierSubPatch(piece, sub, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                                 ctx->ray->tfar);
+                                 ctx->ray->tfar, leavesFrom(*ctx->ray, args->geomID, sub.piece));
   }
   if (hit) ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
 }

@@ -163,6 +163,7 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
   si.geometry = &record;
   si.geometryId = hit.geometry;
   si.primitive = hit.primitive;
+  si.uv = Vec2(hit.u, hit.v);
   if (record.bezier) {
     // The exact surface point of the piece at the double-precision (u, v) of the hit.
     const BezierTriangle& piece = (*record.bezier)[hit.primitive];
@@ -224,6 +225,9 @@ Ray RenderScene::spawnRay(const SurfaceInteraction& si, const Vec3& direction) c
   ray.direction = direction;
   ray.tnear = 0.0;
   ray.tfar = kInfinity;
+  ray.fromGeometry = si.geometryId;
+  ray.fromPrimitive = si.primitive;
+  ray.fromUV = si.uv;
   return ray;
 }
 

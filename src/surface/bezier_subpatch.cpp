@@ -41,11 +41,13 @@ inline P3 cross(const P3& a, const P3& b) {
 }
 
 // Newton on b(u, v) = o + t·d in (u, v, t), in 3D on the piece's own net, from (u, v, t). On
-// success (u, v) is a root (the point b(u, v) within 1e-9 of the piece's scale of the line) and
-// t its ray parameter.
+// success (u, v) is a root (the point b(u, v) within 1e-9 of the piece's scale of the line, then
+// polished by one more step) and t its ray parameter.
 bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& u, double& v,
              double& t) {
   const P3 nd{-d.x(), -d.y(), -d.z()};
+  const double boxSize = (piece.bounds.hi - piece.bounds.lo).maxCoeff();
+  const double dd = d.squaredNorm();
   P3 p, pu, pv;
   for (int it = 0; it < 24; ++it) {
     evaluatePiece(piece, u, v, p, pu, pv);
@@ -56,22 +58,26 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
     if (!(std::abs(det) > 0.0)) return false;
     const double su = dot(f, bc) / det, sv = dot(f, ca) / det, st = dot(f, ab) / det;
     if (!std::isfinite(su) || !std::isfinite(sv) || !std::isfinite(st)) return false;
+    // Converged where the point already lies on the line, within 1e-9 of the scale of the
+    // piece's control points seen from o (an upper bound of intersectBezierTriangle's), and the
+    // step from it is small: a point near the line at a singular Jacobian is no root.
+    if (std::max(std::abs(su), std::abs(sv)) < 1e-9) {
+      const P3 r{p.x - o.x(), p.y - o.y(), p.z - o.z()};
+      const double tp = (r.x * d.x() + r.y * d.y() + r.z * d.z()) / dd;
+      const double residual =
+          1e-9 * (std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) + boxSize);
+      if (std::abs(r.x - tp * d.x()) <= residual && std::abs(r.y - tp * d.y()) <= residual &&
+          std::abs(r.z - tp * d.z()) <= residual) {
+        u += su;
+        v += sv;
+        t += st;
+        return std::isfinite(t) && std::abs(u) <= 4.0 && std::abs(v) <= 4.0;
+      }
+    }
     u += su;
     v += sv;
     t += st;
     if (std::abs(u) > 4.0 || std::abs(v) > 4.0) return false;
-    if (std::max(std::abs(su), std::abs(sv)) < 1e-12) {
-      evaluatePiece(piece, u, v, p, pu, pv);
-      const P3 r{p.x - o.x(), p.y - o.y(), p.z - o.z()};
-      t = (r.x * d.x() + r.y * d.y() + r.z * d.z()) / d.squaredNorm();
-      // The residual against the scale of the piece's control points seen from o (an upper
-      // bound of intersectBezierTriangle's), so a tiny step at a singular Jacobian is no root.
-      const double scale = std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) +
-                           (piece.bounds.hi - piece.bounds.lo).maxCoeff();
-      const double residual = 1e-9 * scale;
-      return std::abs(r.x - t * d.x()) <= residual && std::abs(r.y - t * d.y()) <= residual &&
-             std::abs(r.z - t * d.z()) <= residual && std::isfinite(t);
-    }
   }
   return false;
 }
@@ -101,9 +107,10 @@ inline double dotf(const Vec3& a, const float* b) {
 // The fast path of a sub-patch: the prism test, then Newton from where the ray crosses the
 // corner triangle's plane. Hit and None are final: the cone proves that the ray meets the region
 // at most once. Candidate is a root of the region in range, but where the ray may meet the region
-// twice; Unknown leaves the region to the subdivision search.
+// twice; Unknown leaves the region to the subdivision search. `from`: see
+// intersectBezierSubPatch.
 Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
-                     const Vec3& d, double tmin, double tmax, BezierHit& hit) {
+                     const Vec3& d, double tmin, double tmax, const Vec2* from, BezierHit& hit) {
   const Vec3 r = o - sub.p0;
   const double ho = dotf(r, sub.n), hd = dotf(d, sub.n);
   // Rounding of the projections from a far origin: far below this.
@@ -131,10 +138,12 @@ Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, con
   // the sign of d·axis (the injectivity test of slopes(), from the precomputed cone).
   const double da = dotf(d, sub.axis), sinCone = double(sub.sinCone);
   const bool injective = da * da > sinCone * sinCone * d.squaredNorm();
-  double t = -ho / hd;
-  if (!std::isfinite(t)) return Solved::Unknown;
   double cu[3], cv[3];
   sub.corners(cu, cv);
+  // A ray that leaves the region meets it at most once: there, at its origin.
+  if (injective && from && inTriangle(cu, cv, from->x(), from->y())) return Solved::None;
+  double t = -ho / hd;
+  if (!std::isfinite(t)) return Solved::Unknown;
   double l1 = std::max(a1 + t * b1, 0.0), l2 = std::max(a2 + t * b2, 0.0);
   const double l0 = std::max(1.0 - (a1 + t * b1) - (a2 + t * b2), 0.0);
   const double sum = l0 + l1 + l2;
@@ -409,10 +418,11 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
 }
 
 bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
-                             const Vec3& d, double tmin, double tmax, BezierHit& hit) {
+                             const Vec3& d, double tmin, double tmax, BezierHit& hit,
+                             const Vec2* from) {
   if (!(tmin < tmax)) return false;
   BezierHit candidate;
-  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, candidate)) {
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, candidate)) {
     case Solved::Hit:
       hit = candidate;
       return true;
@@ -437,10 +447,10 @@ bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& 
 }
 
 bool occludesBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
-                            const Vec3& d, double tmin, double tmax) {
+                            const Vec3& d, double tmin, double tmax, const Vec2* from) {
   if (!(tmin < tmax)) return false;
   BezierHit hit;
-  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, hit)) {
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, hit)) {
     case Solved::Hit:
     case Solved::Candidate:
       return true;

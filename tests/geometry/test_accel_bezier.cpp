@@ -167,6 +167,60 @@ TEST(Accel, BezierSubPatchesAgreeWithTheDirectIntersector) {
   EXPECT_GE(hitCount, compared);
 }
 
+// A ray spawned from a hit names it (Ray::from*): the regions that hold the hit and prove the
+// ray meets them at most once skip it, and nothing else changes. Rays leave random points of the
+// pieces, offset as RenderScene::spawnRay does; their hits farther than a hair are every piece's
+// nearest, their own piece's second meeting included, and with the origin named, fewer rays come
+// back to where they started.
+TEST(Accel, RaysLeavingAPieceSkipOnlyTheirOrigin) {
+  enableFlushToZero();
+  const std::vector<BezierTriangle> pieces = scatteredPieces();
+  Accel accel;
+  const uint32_t id = accel.addBezierTriangles(pieces);
+  accel.commit();
+  Pcg32 rng(83);
+  constexpr double kHair = 1e-6;
+  int ownPieceAgain = 0, farHits = 0, selfHitsNamed = 0, selfHitsUnnamed = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const uint32_t p = uint32_t(rng.nextDouble() * double(pieces.size() - 1));
+    double u = rng.nextDouble(), v = rng.nextDouble();
+    if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+    const Vec3 point = pieces[p].position(u, v), n = pieces[p].normal(u, v);
+    const Vec3 d = uniformDirection(rng);
+    Ray ray{point + (d.dot(n) >= 0.0 ? 1e-12 : -1e-12) * n, d, 0.0, 4.0};
+    const RayHit unnamed = accel.intersect(ray);
+    ray.fromGeometry = id;
+    ray.fromPrimitive = p;
+    ray.fromUV = Vec2(u, v);
+    const RayHit named = accel.intersect(ray);
+    EXPECT_EQ(accel.occluded(ray), named.valid()) << i;
+    // The direct answer beyond a hair: every root of every piece.
+    BezierHit best;
+    uint32_t bestPiece = ~0u;
+    std::vector<BezierHit> all;
+    for (uint32_t q = 0; q < pieces.size(); ++q) {
+      all.clear();
+      intersectBezierTriangleAll(pieces[q], ray.origin, ray.direction, kHair, ray.tfar, all);
+      for (const BezierHit& h : all)
+        if (h.t < best.t) best = h, bestPiece = q;
+    }
+    selfHitsNamed += named.valid() && named.t <= kHair;
+    selfHitsUnnamed += unnamed.valid() && unnamed.t <= kHair;
+    if (named.valid() && named.t <= kHair) continue;
+    ASSERT_EQ(named.valid(), bestPiece != ~0u) << i;
+    if (!named.valid()) continue;
+    ++farHits;
+    ownPieceAgain += bestPiece == p;
+    EXPECT_NEAR(named.t, best.t, 1e-9 * (1.0 + best.t)) << i;
+    if (unnamed.valid() && unnamed.t > kHair) {
+      EXPECT_EQ(named.t, unnamed.t) << i;
+    }
+  }
+  EXPECT_GT(farHits, 2000);
+  EXPECT_GT(ownPieceAgain, 50);
+  EXPECT_LE(selfHitsNamed, selfHitsUnnamed);
+}
+
 // A rendering structure traces the flat pieces (a triangle, linearly parametrised) as native
 // triangles: each hit still reports the piece, its (u, v) and its normal, in double precision,
 // and a nearer curved piece still wins.

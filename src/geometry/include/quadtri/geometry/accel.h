@@ -18,6 +18,11 @@ struct Ray {
   Vec3 direction;
   double tnear = 0.0;
   double tfar = kInfinity;
+  /// For a ray spawned from a surface: the geometry, primitive and (u, v) of the hit it leaves
+  /// (geometry ~0u: none). A Bézier region whose cone proves that the ray meets it at most once
+  /// skips the ray when that point lies in it, without a solve.
+  uint32_t fromGeometry = ~0u, fromPrimitive = ~0u;
+  Vec2 fromUV = Vec2::Zero();
 };
 
 /// What a ray hit: which geometry (the id returned when it was added), which primitive, where.

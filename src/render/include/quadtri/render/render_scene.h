@@ -49,6 +49,7 @@ struct SurfaceInteraction {
   const GeometryRecord* geometry = nullptr;
   uint32_t geometryId = ~0u;  ///< the id addModel returned for the geometry hit
   uint32_t primitive = ~0u;   ///< its triangle or patch (RayHit::primitive)
+  Vec2 uv = Vec2::Zero();     ///< the hit's (u, v) on that primitive (RayHit::u, v)
 };
 
 class RenderScene {

@@ -141,11 +141,15 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
 /// Nearest hit of o + t·d with the sub-patch's region of `piece` (`sub.piece`'s piece), for t in
 /// (tmin, tmax); (u, v) are the piece's. Exact as intersectBezierTriangle, restricted to the
 /// region (up to 1e-6 of its size). Returns false, leaving `hit` untouched, when there is none.
+/// `from`: for a ray spawned from a hit of this piece, that hit's (u, v). Where it lies in the
+/// region and the region's cone proves the ray meets it at most once, that meeting is the origin
+/// itself, and the region is skipped without a solve.
 bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
-                             const Vec3& d, double tmin, double tmax, BezierHit& hit);
+                             const Vec3& d, double tmin, double tmax, BezierHit& hit,
+                             const Vec2* from = nullptr);
 
-/// True when the ray hits the sub-patch's region anywhere in (tmin, tmax).
+/// True when the ray hits the sub-patch's region anywhere in (tmin, tmax) (`from` as above).
 bool occludesBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
-                            const Vec3& d, double tmin, double tmax);
+                            const Vec3& d, double tmin, double tmax, const Vec2* from = nullptr);
 
 }  // namespace quadtri
