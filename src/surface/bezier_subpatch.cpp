@@ -41,13 +41,17 @@ inline P3 cross(const P3& a, const P3& b) {
 }
 
 // Newton on b(u, v) = o + t·d in (u, v, t), in 3D on the piece's own net, from (u, v, t). On
-// success (u, v) is a root (the point b(u, v) within 1e-9 of the piece's scale of the line, then
-// polished by one more step) and t its ray parameter.
+// success (u, v) is a root and t its ray parameter: the point b(u, v) lies on the line, within
+// 1e-9 of the scale of the piece's control points seen from o (an upper bound of
+// intersectBezierTriangle's) with a step below 1e-9, or within 1e-6 with a step below 1e-6 that
+// squared the one before (the quadratic convergence that only a regular root gives); either way
+// polished by that last step. A point near the line at a singular Jacobian is no root.
 bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& u, double& v,
              double& t) {
   const P3 nd{-d.x(), -d.y(), -d.z()};
   const double boxSize = (piece.bounds.hi - piece.bounds.lo).maxCoeff();
   const double dd = d.squaredNorm();
+  double previous = kInfinity;
   P3 p, pu, pv;
   for (int it = 0; it < 24; ++it) {
     evaluatePiece(piece, u, v, p, pu, pv);
@@ -58,14 +62,14 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
     if (!(std::abs(det) > 0.0)) return false;
     const double su = dot(f, bc) / det, sv = dot(f, ca) / det, st = dot(f, ab) / det;
     if (!std::isfinite(su) || !std::isfinite(sv) || !std::isfinite(st)) return false;
-    // Converged where the point already lies on the line, within 1e-9 of the scale of the
-    // piece's control points seen from o (an upper bound of intersectBezierTriangle's), and the
-    // step from it is small: a point near the line at a singular Jacobian is no root.
-    if (std::max(std::abs(su), std::abs(sv)) < 1e-9) {
+    const double step = std::max(std::abs(su), std::abs(sv));
+    const bool settled = step < 1e-9;
+    const bool quadratic = step < 1e-7 && step <= 10.0 * previous * previous;
+    if (settled || quadratic) {
       const P3 r{p.x - o.x(), p.y - o.y(), p.z - o.z()};
       const double tp = (r.x * d.x() + r.y * d.y() + r.z * d.z()) / dd;
-      const double residual =
-          1e-9 * (std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) + boxSize);
+      const double residual = (settled ? 1e-9 : 1e-6) *
+                              (std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) + boxSize);
       if (std::abs(r.x - tp * d.x()) <= residual && std::abs(r.y - tp * d.y()) <= residual &&
           std::abs(r.z - tp * d.z()) <= residual) {
         u += su;
@@ -74,6 +78,7 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
         return std::isfinite(t) && std::abs(u) <= 4.0 && std::abs(v) <= 4.0;
       }
     }
+    previous = step;
     u += su;
     v += sv;
     t += st;
@@ -235,15 +240,16 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int depth
     for (int b = 0; b < 10; ++b) {
       Vec3& c = crosses[10 * a + b];
       c = du[a].cross(dv[b]);
-      const double len = c.norm();
-      if (!(len > 0.0)) return s;  // a vanishing cross: no cone
-      c /= len;
+      const double len2 = c.squaredNorm();
+      if (!(len2 > 0.0)) return s;  // a vanishing cross: no cone
+      c *= 1.0 / std::sqrt(len2);
       axis += c;
     }
   storeFloat(safeNormalized(axis, normal / std::sqrt(area2)), s.axis);
-  const Vec3 stored(s.axis[0], s.axis[1], s.axis[2]);
+  Vec3 stored(s.axis[0], s.axis[1], s.axis[2]);
+  stored *= 1.0 / stored.norm();
   double cosMin = 1.0;
-  for (const Vec3& c : crosses) cosMin = std::min(cosMin, c.dot(stored) / stored.norm());
+  for (const Vec3& c : crosses) cosMin = std::min(cosMin, c.dot(stored));
   // The sine of the half-angle, grown far beyond the rounding of these products and of the axis.
   if (cosMin > 0.0) s.sinCone = floatUp(std::sqrt(std::max(0.0, 1.0 - cosMin * cosMin)) + 1e-6);
   return s;
