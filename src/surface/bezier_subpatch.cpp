@@ -301,125 +301,189 @@ CornerTriangle cornerTriangle(const BezierTriangle& net) {
   return c;
 }
 
+// A region while the sub-patches are built: its net, its sub-patch and how much it needs a split.
+struct Region {
+  BezierTriangle net;
+  BezierSubPatch sub;
+  double coneNeed = 0.0;  // the cone's sine over the largest allowed
+  double boxNeed = 0.0;   // an elongated region's box ratio over kBoxPerArea (0 otherwise)
+  double need = 0.0;      // the larger: above 1, worth splitting
+  int longest = -1;       // the corner opposite the side to bisect; -1: split in 4
+};
+
+Region makeRegion(const BezierTriangle& net, uint32_t p, int depth, const double* cu,
+                  const double* cv, double sinMax) {
+  Region item;
+  item.net = net;
+  item.sub = makeSubPatch(item.net, p, depth, cu, cv);
+  const CornerTriangle c = cornerTriangle(item.net);
+  double side2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double l2 = (c.p[(k + 2) % 3] - c.p[(k + 1) % 3]).squaredNorm();
+    if (l2 > side2) side2 = l2, item.longest = k;
+  }
+  const double boxRatio = c.area > 0.0 ? boxArea(item.sub) / (2.0 * c.area) : kInfinity;
+  if (!(side2 > kElongated * 2.0 * c.area)) item.longest = -1;
+  // A box too large for its region shrinks by bisection only: split in 4, a region's children
+  // have its shape, and their boxes together its box's area.
+  item.coneNeed = double(item.sub.sinCone) / sinMax;
+  item.boxNeed = item.longest >= 0 ? boxRatio / kBoxPerArea : 0.0;
+  item.need = std::max(item.coneNeed, item.boxNeed);
+  return item;
+}
+
+// Splits a piece's regions, the neediest first, while fewer than `share`; leaves them in `items`.
+// Returns whether some region still needed a split the share left no room for, and sets
+// `estimate` to the regions the piece alone would need (1 to `maxRegions`): a cone narrows with
+// the region's side, so a 4-split quarters the square of its need; a bisection halves an
+// elongated region's box need.
+bool splitPiece(const BezierTriangle& piece, uint32_t p, size_t share, double sinMax,
+                double maxRegions, std::vector<Region>& items, std::vector<size_t>& heap,
+                double& estimate) {
+  items.clear();
+  heap.clear();
+  const double whole[2][3] = {{0, 1, 0}, {0, 0, 1}};
+  items.push_back(makeRegion(piece, p, 0, whole[0], whole[1], sinMax));
+  estimate = std::clamp(std::max(items[0].coneNeed * items[0].coneNeed, items[0].boxNeed), 1.0,
+                        maxRegions);
+  const auto cost = [&](size_t i) { return items[i].longest >= 0 ? 1 : 2; };
+  const auto splittable = [&](size_t i) {
+    return items[i].sub.depth + cost(i) <= BezierSubPatch::kMaxDepth && items[i].need > 1.0;
+  };
+  const auto lessNeedy = [&](size_t a, size_t b) {
+    return items[a].need < items[b].need || (items[a].need == items[b].need && a > b);
+  };
+  bool starved = false;
+  if (splittable(0)) heap.push_back(0);
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), lessNeedy);
+    const size_t at = heap.back();
+    heap.pop_back();
+    const int step = cost(at), children = step == 1 ? 2 : 4;
+    if (items.size() + size_t(children - 1) > share) {
+      starved = true;
+      continue;
+    }
+    const BezierSubPatch parent = items[at].sub;
+    double pu[3], pv[3];
+    parent.corners(pu, pv);
+    // The children's corners in the piece's (u, v), and their nets from the parent's.
+    double cu[4][3], cv[4][3];
+    std::array<BezierTriangle, 4> nets;
+    if (children == 2) {
+      // Across the side opposite corner r at its midpoint m: (m, c_r, c_r+1) and
+      // (m, c_r+2, c_r), both with the parent's orientation.
+      const int r = items[at].longest, r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+      const int order[2][3] = {{-1, r, r1}, {-1, r2, r}};
+      for (int m = 0; m < 2; ++m)
+        for (int c = 0; c < 3; ++c) {
+          const int k = order[m][c];
+          cu[m][c] = k < 0 ? 0.5 * (pu[r1] + pu[r2]) : pu[k];
+          cv[m][c] = k < 0 ? 0.5 * (pv[r1] + pv[r2]) : pv[k];
+        }
+      const std::array<BezierTriangle, 2> halves = bisectBezierTriangle(items[at].net, r);
+      nets[0] = halves[0];
+      nets[1] = halves[1];
+    } else {
+      nets = subdivideBezierTriangle(items[at].net);
+      for (int m = 0; m < 4; ++m) {
+        std::copy(pu, pu + 3, cu[m]);
+        std::copy(pv, pv + 3, cv[m]);
+        childCorners(m, cu[m], cv[m]);
+      }
+    }
+    for (int m = 0; m < children; ++m) {
+      const size_t slot = m == 0 ? at : items.size();
+      Region child =
+          makeRegion(nets[size_t(m)], parent.piece, parent.depth + step, cu[m], cv[m], sinMax);
+      std::copy(parent.axis, parent.axis + 3, child.sub.parentAxis);
+      child.sub.parentSinCone = parent.sinCone;
+      std::copy(parent.cu, parent.cu + 3, child.sub.parentU);
+      std::copy(parent.cv, parent.cv + 3, child.sub.parentV);
+      if (m == 0)
+        items[at] = child;
+      else
+        items.push_back(child);
+      if (splittable(slot)) {
+        heap.push_back(slot);
+        std::push_heap(heap.begin(), heap.end(), lessNeedy);
+      }
+    }
+  }
+  return starved;
+}
+
 }  // namespace
 
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees, size_t budget) {
   if (budget == 0) budget = std::max<size_t>(65536, 8 * pieces.size());
   constexpr size_t kMaxRegions = size_t(1) << BezierSubPatch::kMaxDepth;
-  // Each piece's share of the budget, split among its regions on its own (in parallel, in a
-  // fixed slot each, so the result does not depend on the threads).
-  const size_t share =
-      std::clamp<size_t>(budget / std::max<size_t>(pieces.size(), 1), 1, kMaxRegions);
   const double sinMax = std::sin(coneDegrees * kPi / 180.0);
-  std::vector<BezierSubPatch> slots(pieces.size() * share);
-  std::vector<uint16_t> counts(pieces.size(), 0);
-  parallelForRange(
-      tbb::blocked_range<size_t>(0, pieces.size(), 256),
-      [&](const tbb::blocked_range<size_t>& range) {
-        struct Item {
-          BezierTriangle net;
-          BezierSubPatch sub;
-          double need = 0.0;  // above 1: worth splitting
-          int longest = -1;   // the corner opposite the side to bisect; -1: split in 4
-        };
-        std::vector<Item> items;
-        std::vector<size_t> heap;
-        const auto makeItem = [sinMax](const BezierTriangle& net, uint32_t p, int depth,
-                                       const double* cu, const double* cv) {
-          Item item;
-          item.net = net;
-          item.sub = makeSubPatch(item.net, p, depth, cu, cv);
-          const CornerTriangle c = cornerTriangle(item.net);
-          double side2 = 0.0;
-          for (int k = 0; k < 3; ++k) {
-            const double l2 = (c.p[(k + 2) % 3] - c.p[(k + 1) % 3]).squaredNorm();
-            if (l2 > side2) side2 = l2, item.longest = k;
-          }
-          const double boxRatio = c.area > 0.0 ? boxArea(item.sub) / (2.0 * c.area) : kInfinity;
-          if (!(side2 > kElongated * 2.0 * c.area)) item.longest = -1;
-          // A box too large for its region shrinks by bisection only: split in 4, a region's
-          // children have its shape, and their boxes together its box's area.
-          item.need = std::max(double(item.sub.sinCone) / sinMax,
-                               item.longest >= 0 ? boxRatio / kBoxPerArea : 0.0);
-          return item;
-        };
-        for (size_t p = range.begin(); p != range.end(); ++p) {
-          items.clear();
-          heap.clear();
-          const double whole[2][3] = {{0, 1, 0}, {0, 0, 1}};
-          items.push_back(makeItem(pieces[p], uint32_t(p), 0, whole[0], whole[1]));
-          const auto cost = [&](size_t i) { return items[i].longest >= 0 ? 1 : 2; };
-          const auto splittable = [&](size_t i) {
-            return items[i].sub.depth + cost(i) <= BezierSubPatch::kMaxDepth && items[i].need > 1.0;
-          };
-          const auto lessNeedy = [&](size_t a, size_t b) {
-            return items[a].need < items[b].need || (items[a].need == items[b].need && a > b);
-          };
-          if (splittable(0)) heap.push_back(0);
-          while (!heap.empty()) {
-            std::pop_heap(heap.begin(), heap.end(), lessNeedy);
-            const size_t at = heap.back();
-            heap.pop_back();
-            const int step = cost(at), children = step == 1 ? 2 : 4;
-            if (items.size() + size_t(children - 1) > share) continue;
-            const BezierSubPatch parent = items[at].sub;
-            double pu[3], pv[3];
-            parent.corners(pu, pv);
-            // The children's corners in the piece's (u, v), and their nets from the parent's.
-            double cu[4][3], cv[4][3];
-            std::array<BezierTriangle, 4> nets;
-            if (children == 2) {
-              // Across the side opposite corner r at its midpoint m: (m, c_r, c_r+1) and
-              // (m, c_r+2, c_r), both with the parent's orientation.
-              const int r = items[at].longest, r1 = (r + 1) % 3, r2 = (r + 2) % 3;
-              const int order[2][3] = {{-1, r, r1}, {-1, r2, r}};
-              for (int m = 0; m < 2; ++m)
-                for (int c = 0; c < 3; ++c) {
-                  const int k = order[m][c];
-                  cu[m][c] = k < 0 ? 0.5 * (pu[r1] + pu[r2]) : pu[k];
-                  cv[m][c] = k < 0 ? 0.5 * (pv[r1] + pv[r2]) : pv[k];
-                }
-              const std::array<BezierTriangle, 2> halves = bisectBezierTriangle(items[at].net, r);
-              nets[0] = halves[0];
-              nets[1] = halves[1];
-            } else {
-              nets = subdivideBezierTriangle(items[at].net);
-              for (int m = 0; m < 4; ++m) {
-                std::copy(pu, pu + 3, cu[m]);
-                std::copy(pv, pv + 3, cv[m]);
-                childCorners(m, cu[m], cv[m]);
-              }
-            }
-            for (int m = 0; m < children; ++m) {
-              const size_t slot = m == 0 ? at : items.size();
-              Item child =
-                  makeItem(nets[size_t(m)], parent.piece, parent.depth + step, cu[m], cv[m]);
-              std::copy(parent.axis, parent.axis + 3, child.sub.parentAxis);
-              child.sub.parentSinCone = parent.sinCone;
-              std::copy(parent.cu, parent.cu + 3, child.sub.parentU);
-              std::copy(parent.cv, parent.cv + 3, child.sub.parentV);
-              if (m == 0)
-                items[at] = child;
-              else
-                items.push_back(child);
-              if (splittable(slot)) {
-                heap.push_back(slot);
-                std::push_heap(heap.begin(), heap.end(), lessNeedy);
-              }
-            }
-          }
-          for (size_t k = 0; k < items.size(); ++k) slots[p * share + k] = items[k].sub;
-          counts[p] = uint16_t(items.size());
-        }
-      });
+  const size_t n = pieces.size();
+  // First an even share of the budget per piece; then what the pieces that needed less left
+  // over goes to those that needed more, in proportion to their estimates, and they are split
+  // again. Each piece in its own slots and every sum in piece order, so the result does not
+  // depend on the threads.
+  const size_t even = std::clamp<size_t>(budget / std::max<size_t>(n, 1), 1, kMaxRegions);
+  std::vector<size_t> share(n, even);
+  std::vector<uint16_t> counts(n, 0);
+  std::vector<uint8_t> starved(n, 0);
+  std::vector<double> estimate(n, 0.0);
+  // Splits pieces which[i] into slots from at[i] on.
+  const auto split = [&](const std::vector<size_t>& which, const std::vector<size_t>& at,
+                         std::vector<BezierSubPatch>& slots) {
+    parallelForRange(tbb::blocked_range<size_t>(0, which.size(), 64),
+                     [&](const tbb::blocked_range<size_t>& range) {
+                       std::vector<Region> items;
+                       std::vector<size_t> heap;
+                       for (size_t i = range.begin(); i != range.end(); ++i) {
+                         const size_t p = which[i];
+                         starved[p] = splitPiece(pieces[p], uint32_t(p), share[p], sinMax,
+                                                 double(kMaxRegions), items, heap, estimate[p]);
+                         for (size_t k = 0; k < items.size(); ++k) slots[at[i] + k] = items[k].sub;
+                         counts[p] = uint16_t(items.size());
+                       }
+                     });
+  };
+  std::vector<size_t> all(n), first(n);
+  for (size_t p = 0; p < n; ++p) all[p] = p, first[p] = p * even;
+  std::vector<BezierSubPatch> slots(n * even);
+  split(all, first, slots);
+  size_t used = 0;
+  double weight = 0.0;
+  std::vector<size_t> again;
+  for (size_t p = 0; p < n; ++p) {
+    used += counts[p];
+    if (starved[p]) again.push_back(p), weight += estimate[p];
+  }
+  std::vector<size_t> againFirst(again.size(), 0);
+  std::vector<BezierSubPatch> againSlots;
+  if (used < budget && !again.empty()) {
+    const double spare = double(budget - used);
+    size_t next = 0;
+    for (size_t i = 0; i < again.size(); ++i) {
+      const size_t p = again[i];
+      share[p] = std::min(kMaxRegions, even + size_t(spare * estimate[p] / weight));
+      againFirst[i] = next;
+      next += share[p];
+    }
+    againSlots.resize(next);
+    split(again, againFirst, againSlots);
+  } else {
+    again.clear();
+  }
   std::vector<BezierSubPatch> out;
   size_t total = 0;
   for (uint16_t c : counts) total += c;
   out.reserve(total);
-  for (size_t p = 0; p < pieces.size(); ++p)
-    out.insert(out.end(), slots.begin() + std::ptrdiff_t(p * share),
-               slots.begin() + std::ptrdiff_t(p * share + counts[p]));
+  size_t nextAgain = 0;
+  for (size_t p = 0; p < n; ++p) {
+    const bool second = nextAgain < again.size() && again[nextAgain] == p;
+    const auto begin = second ? againSlots.begin() + std::ptrdiff_t(againFirst[nextAgain++])
+                              : slots.begin() + std::ptrdiff_t(first[p]);
+    out.insert(out.end(), begin, begin + counts[p]);
+  }
   return out;
 }
 

@@ -128,8 +128,10 @@ struct BezierSubPatch {
   Bounds3 bounds() const;
 };
 
-/// The sub-patches that rendering traces in place of `pieces`: the pieces, then, while fewer
-/// than `budget` (0: the larger of 65536 and 8 per piece), the neediest region split, down to
+/// The sub-patches that rendering traces in place of `pieces`: each piece's neediest region
+/// split while the piece holds fewer than its share of `budget` (0: the larger of 65536 and 8 per
+/// piece): an even share first, then what the pieces that needed less left over, given to those
+/// that needed more in proportion to the regions they would need. Regions split down to
 /// BezierSubPatch::kMaxDepth: one whose derivative cone is wider than `coneDegrees` (the
 /// narrower the cone, the fewer rays meet a region where one Newton solve does not settle it),
 /// or whose box has more than 6 times the area of its corner triangle (a ray enters such a box
