@@ -457,17 +457,21 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
     used += counts[p];
     if (starved[p]) again.push_back(p), weight += estimate[p];
   }
-  std::vector<size_t> againFirst(again.size(), 0);
+  // Only the pieces whose share grows are split again.
+  std::vector<size_t> againFirst;
   std::vector<BezierSubPatch> againSlots;
-  if (used < budget && !again.empty()) {
+  if (used < budget && weight > 0.0) {
     const double spare = double(budget - used);
+    std::vector<size_t> grown;
     size_t next = 0;
-    for (size_t i = 0; i < again.size(); ++i) {
-      const size_t p = again[i];
+    for (const size_t p : again) {
       share[p] = std::min(kMaxRegions, even + size_t(spare * estimate[p] / weight));
-      againFirst[i] = next;
+      if (share[p] == even) continue;
+      grown.push_back(p);
+      againFirst.push_back(next);
       next += share[p];
     }
+    again.swap(grown);
     againSlots.resize(next);
     split(again, againFirst, againSlots);
   } else {
