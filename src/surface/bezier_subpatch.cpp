@@ -301,6 +301,9 @@ CornerTriangle cornerTriangle(const BezierTriangle& net) {
   return c;
 }
 
+// The most regions a piece can hold: every one 10 bisections deep.
+constexpr size_t kMaxRegions = size_t(1) << BezierSubPatch::kMaxDepth;
+
 // A region while the sub-patches are built: its net, its sub-patch and how much it needs a split.
 struct Region {
   BezierTriangle net;
@@ -334,18 +337,17 @@ Region makeRegion(const BezierTriangle& net, uint32_t p, int depth, const double
 
 // Splits a piece's regions, the neediest first, while fewer than `share`; leaves them in `items`.
 // Returns whether some region still needed a split the share left no room for, and sets
-// `estimate` to the regions the piece alone would need (1 to `maxRegions`): a cone narrows with
+// `estimate` to the regions the piece alone would need (1 to kMaxRegions): a cone narrows with
 // the region's side, so a 4-split quarters the square of its need; a bisection halves an
 // elongated region's box need.
 bool splitPiece(const BezierTriangle& piece, uint32_t p, size_t share, double sinMax,
-                double maxRegions, std::vector<Region>& items, std::vector<size_t>& heap,
-                double& estimate) {
+                std::vector<Region>& items, std::vector<size_t>& heap, double& estimate) {
   items.clear();
   heap.clear();
   const double whole[2][3] = {{0, 1, 0}, {0, 0, 1}};
   items.push_back(makeRegion(piece, p, 0, whole[0], whole[1], sinMax));
   estimate = std::clamp(std::max(items[0].coneNeed * items[0].coneNeed, items[0].boxNeed), 1.0,
-                        maxRegions);
+                        double(kMaxRegions));
   const auto cost = [&](size_t i) { return items[i].longest >= 0 ? 1 : 2; };
   const auto splittable = [&](size_t i) {
     return items[i].sub.depth + cost(i) <= BezierSubPatch::kMaxDepth && items[i].need > 1.0;
@@ -418,7 +420,6 @@ bool splitPiece(const BezierTriangle& piece, uint32_t p, size_t share, double si
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees, size_t budget) {
   if (budget == 0) budget = std::max<size_t>(65536, 8 * pieces.size());
-  constexpr size_t kMaxRegions = size_t(1) << BezierSubPatch::kMaxDepth;
   const double sinMax = std::sin(coneDegrees * kPi / 180.0);
   const size_t n = pieces.size();
   // First an even share of the budget per piece; then what the pieces that needed less left
@@ -439,8 +440,8 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
                        std::vector<size_t> heap;
                        for (size_t i = range.begin(); i != range.end(); ++i) {
                          const size_t p = which[i];
-                         starved[p] = splitPiece(pieces[p], uint32_t(p), share[p], sinMax,
-                                                 double(kMaxRegions), items, heap, estimate[p]);
+                         starved[p] = splitPiece(pieces[p], uint32_t(p), share[p], sinMax, items,
+                                                 heap, estimate[p]);
                          for (size_t k = 0; k < items.size(); ++k) slots[at[i] + k] = items[k].sub;
                          counts[p] = uint16_t(items.size());
                        }
