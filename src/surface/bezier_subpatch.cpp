@@ -155,7 +155,14 @@ Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, con
   l1 /= sum, l2 /= sum;
   double u = cu[0] + l1 * (cu[1] - cu[0]) + l2 * (cu[2] - cu[0]);
   double v = cv[0] + l1 * (cv[1] - cv[0]) + l2 * (cv[2] - cv[0]);
-  if (!newton3(piece, o, d, u, v, t)) return Solved::Unknown;
+  // Where Newton finds no root in the region, the winding number of its boundary settles
+  // whether the ray meets a region it meets at most once.
+  const auto unsettled = [&] {
+    return injective && bezierRegionWinding(piece, cu, cv, o, d) == RegionWinding::Outside
+               ? Solved::None
+               : Solved::Unknown;
+  };
+  if (!newton3(piece, o, d, u, v, t)) return unsettled();
   // The root in the region (its barycentric coordinates there) and in the piece's domain.
   const double e1u = cu[1] - cu[0], e1v = cv[1] - cv[0], e2u = cu[2] - cu[0], e2v = cv[2] - cv[0];
   const double ru = u - cu[0], rv = v - cv[0];
@@ -167,10 +174,10 @@ Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, con
     const double dp = dotf(d, sub.parentAxis), sinParent = double(sub.parentSinCone);
     if (injective && dp * dp > sinParent * sinParent * d.squaredNorm() && inParent(sub, u, v))
       return Solved::None;
-    return Solved::Unknown;
+    return unsettled();
   }
   if (!(u >= -kDomainSlack && v >= -kDomainSlack && u + v <= 1.0 + kDomainSlack))
-    return Solved::Unknown;
+    return unsettled();
   if (!(t > tmin && t < tmax)) return injective ? Solved::None : Solved::Unknown;
   hit = {t, u, v};
   return injective ? Solved::Hit : Solved::Candidate;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "fixtures/bezier_pieces.h"
 #include "quadtri/geometry/rng.h"
@@ -224,6 +225,126 @@ TEST(BezierSubPatch, ParentConeCertifiesTheParentRegion) {
     }
   }
   EXPECT_GT(certified, 100);
+}
+
+// The winding number of a region's projected boundary against every root of the whole piece: on
+// lines its cone certifies, aimed near the region (a third of them within 1e-3 of an edge),
+// Outside exactly when no root of the piece lies in the region, Inside when one does.
+TEST(BezierSubPatch, WindingOfTheBoundaryTellsWhetherALineMeetsTheRegion) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  Pcg32 rng(67);
+  int inside = 0, outside = 0, unknown = 0;
+  for (size_t i = 0; i < subs.size(); i += 2) {
+    const BezierSubPatch& s = subs[i];
+    if (s.sinCone > 0.9f) continue;
+    const BezierTriangle& piece = pieces[s.piece];
+    const Vec3 axis = vec(s.axis).normalized();
+    double cu[3], cv[3];
+    s.corners(cu, cv);
+    for (int r = 0; r < 6; ++r) {
+      // A target in or around the region: its barycentric coordinates in [−0.5, 1.5], or 1e-6
+      // to 1e-3 across an edge (log-uniform, either side).
+      double a = 2.0 * rng.nextDouble() - 0.5, b = 2.0 * rng.nextDouble() - 0.5;
+      if (r % 3 == 0) {
+        const double along = rng.nextDouble();
+        const double across =
+            (rng.nextDouble() < 0.5 ? -1.0 : 1.0) * std::pow(10.0, -3.0 - 3.0 * rng.nextDouble());
+        a = along - 0.5 * across, b = across;
+      }
+      const Vec2 uv = pieceUV(s, a, b);
+      const Vec3 target = piece.position(uv.x(), uv.y());
+      const double cone = std::asin(std::min(1.0, double(s.sinCone)));
+      const double tilt = (0.5 * kPi - cone) * 0.99 * rng.nextDouble();
+      const Vec3 side = safeNormalized(axis.cross(uniformDirection(rng)));
+      const Vec3 d = (r % 2 ? 1.0 : -1.0) * (std::cos(tilt) * axis + std::sin(tilt) * side);
+      if (d.dot(vec(s.axis)) * d.dot(vec(s.axis)) <= double(s.sinCone) * s.sinCone) continue;
+      const double size = piece.bounds.diagonal().norm();
+      const Vec3 o = target - 2.0 * size * d;
+      // Every root of the piece on the line, and whether one lies in the region (skipping lines
+      // within 1e-8 of its boundary, where rounding decides).
+      std::vector<BezierHit> roots;
+      intersectBezierTriangleAll(piece, o, d, -kInfinity, kInfinity, roots);
+      bool in = false, near = false;
+      for (const BezierHit& h : roots) {
+        const double e1u = cu[1] - cu[0], e1v = cv[1] - cv[0], e2u = cu[2] - cu[0];
+        const double e2v = cv[2] - cv[0], ru = h.u - cu[0], rv = h.v - cv[0];
+        const double det = e1u * e2v - e1v * e2u;
+        const double ba = (ru * e2v - rv * e2u) / det, bb = (e1u * rv - e1v * ru) / det;
+        const double least = std::min({ba, bb, 1.0 - ba - bb});
+        in |= least >= 0.0;
+        near |= std::abs(least) < 1e-8;
+      }
+      if (near) continue;
+      const RegionWinding w = bezierRegionWinding(piece, cu, cv, o, d);
+      if (w == RegionWinding::Unknown) {
+        ++unknown;
+        continue;
+      }
+      EXPECT_EQ(w == RegionWinding::Inside, in) << "region " << i << " target " << a << " " << b;
+      (in ? inside : outside) += 1;
+    }
+  }
+  EXPECT_GT(inside, 300);
+  EXPECT_GT(outside, 1000);
+  EXPECT_LT(unknown, 5);
+}
+
+// Rays aimed just inside and just outside a region's edges (1e-4 of the edge in (u, v)), from
+// directions its cone proves meet it at most once: the region reports the hit exactly when the
+// target lies in it. Just outside, Newton from inside the region runs to the neighbour's root,
+// and the winding number of the region's projected boundary must rule the region out.
+TEST(BezierSubPatch, RaysPastARegionsEdgeMeetOnlyTheRegionHoldingThem) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
+  Pcg32 rng(61);
+  int inside = 0, outside = 0;
+  for (size_t i = 0; i < subs.size(); i += 3) {
+    const BezierSubPatch& s = subs[i];
+    if (s.sinCone > 0.5f) continue;
+    const BezierTriangle& piece = pieces[s.piece];
+    const Vec3 axis = vec(s.axis).normalized();
+    for (int r = 0; r < 4; ++r) {
+      // A point of an edge, and one 1e-4 across it, towards the opposite corner or away.
+      const int edge = int(rng.nextUint() % 3);
+      const double along = 0.1 + 0.8 * rng.nextDouble();
+      const bool in = r % 2 == 0;
+      const double across = in ? 1e-4 : -1e-4;
+      // Barycentric (a, b) of the region: edge 0 is corners 0 → 1 (b = 0), edge 1 is 1 → 2,
+      // edge 2 is 2 → 0 (a = 0); `across` moves towards the corner opposite.
+      double a = 0.0, b = 0.0;
+      if (edge == 0) a = along - 0.5 * across, b = across;
+      if (edge == 1) a = (1.0 - along) - 0.5 * across, b = along - 0.5 * across;
+      if (edge == 2) a = across, b = (1.0 - along) - 0.5 * across;
+      const Vec2 uv = pieceUV(s, a, b);
+      if (uv.x() < 0.0 || uv.y() < 0.0 || uv.x() + uv.y() > 1.0) continue;  // off the piece
+      const Vec3 target = piece.position(uv.x(), uv.y());
+      // Within 60° of the cone's axis, well inside the directions it certifies.
+      const Vec3 side = safeNormalized(axis.cross(uniformDirection(rng)));
+      const double tilt =
+          std::asin(std::min(1.0, double(s.sinCone))) +
+          (kPi / 3.0 - std::asin(std::min(1.0, double(s.sinCone)))) * rng.nextDouble();
+      const Vec3 d = (r / 2 ? 1.0 : -1.0) * (std::cos(tilt) * axis + std::sin(tilt) * side);
+      if (d.dot(vec(s.axis)) * d.dot(vec(s.axis)) <= 1.01 * double(s.sinCone) * s.sinCone) continue;
+      const double size = piece.bounds.diagonal().norm();
+      const Vec3 o = target - size * d;
+      BezierHit h;
+      const bool hit = intersectBezierSubPatch(piece, s, o, d, 0.0, kInfinity, h);
+      EXPECT_EQ(occludesBezierSubPatch(piece, s, o, d, 0.0, kInfinity), hit) << i;
+      if (in) {
+        ++inside;
+        ASSERT_TRUE(hit) << "region " << i << " edge " << edge;
+        EXPECT_NEAR(h.t, size, 1e-9 * size);
+        EXPECT_NEAR(h.u, uv.x(), 1e-7);
+        EXPECT_NEAR(h.v, uv.y(), 1e-7);
+      } else {
+        ++outside;
+        EXPECT_FALSE(hit) << "region " << i << " edge " << edge << " t " << h.t;
+      }
+    }
+  }
+  EXPECT_GT(inside, 500);
+  EXPECT_GT(outside, 500);
 }
 
 // The nearest hit over a piece's sub-patches against intersectBezierTriangle on the whole

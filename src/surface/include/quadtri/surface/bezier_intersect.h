@@ -140,6 +140,15 @@ struct BezierSubPatch {
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees = 5.0, size_t budget = 0);
 
+/// Where the line o + t·d lies against the region of `piece` with corners (cu[i], cv[i]) in its
+/// (u, v), for a region whose projection along d is one to one (as a BezierSubPatch's cone
+/// certifies): the winding number of the region's projected boundary around the line, 0 when the
+/// line misses the region and ±1 when it meets it. Unknown when the line passes within rounding
+/// of the boundary (or d is zero). Meaningless where the projection folds.
+enum class RegionWinding { Outside, Inside, Unknown };
+RegionWinding bezierRegionWinding(const BezierTriangle& piece, const double* cu, const double* cv,
+                                  const Vec3& o, const Vec3& d);
+
 /// Nearest hit of o + t·d with the sub-patch's region of `piece` (`sub.piece`'s piece), for t in
 /// (tmin, tmax); (u, v) are the piece's. Exact as intersectBezierTriangle, restricted to the
 /// region (up to 1e-6 of its size). Returns false, leaving `hit` untouched, when there is none.
