@@ -15,15 +15,16 @@ struct P2 {
   double x, y;
 };
 
-// One de Casteljau step of a degree-n 2D net at barycentric w (in place allowed, as
+// One de Casteljau step of a degree-N 2D net at barycentric w (in place allowed, as
 // casteljauStep).
-inline void step2(const P2* in, int n, const Bary& w, P2* out) {
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j + k < n; ++j) {
-      const P2& a = in[netIndex(n, j, k)];
-      const P2& b = in[netIndex(n, j + 1, k)];
-      const P2& c = in[netIndex(n, j, k + 1)];
-      out[netIndex(n - 1, j, k)] = {w.w0 * a.x + w.w1 * b.x + w.w2 * c.x,
+template <int N>
+inline void step2(const P2* in, const Bary& w, P2* out) {
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j + k < N; ++j) {
+      const P2& a = in[netIndex(N, j, k)];
+      const P2& b = in[netIndex(N, j + 1, k)];
+      const P2& c = in[netIndex(N, j, k + 1)];
+      out[netIndex(N - 1, j, k)] = {w.w0 * a.x + w.w1 * b.x + w.w2 * c.x,
                                     w.w0 * a.y + w.w1 * b.y + w.w2 * c.y};
     }
 }
@@ -31,18 +32,19 @@ inline void step2(const P2* in, int n, const Bary& w, P2* out) {
 // The first four control points of the quartic curve the net takes along the segment from
 // domain point A to B: the blossom at (A^(4−k), B^k) for k = 0..3 (the fifth is the net at B).
 void edgeCurve(const P2* net, const Bary& A, const Bary& B, P2* out) {
-  // byA[i]: the degree 4 − i net after i steps at A.
-  P2 byA[5][15];
-  std::copy(net, net + 15, byA[0]);
-  for (int i = 1; i <= 4; ++i) step2(byA[i - 1], 5 - i, A, byA[i]);
-  out[0] = byA[4][0];
-  for (int k = 1; k <= 3; ++k) {
-    P2 tmp[10];
-    const int n = k;  // byA[4 − k] has degree k
-    std::copy(byA[4 - k], byA[4 - k] + (n + 1) * (n + 2) / 2, tmp);
-    for (int s = n; s > 0; --s) step2(tmp, s, B, tmp);
-    out[k] = tmp[0];
-  }
+  // The nets after 1, 2, 3 and 4 steps at A (degrees 3, 2, 1, 0), then k steps at B from the
+  // degree-k one.
+  P2 a3[10], a2[6], a1[3], t2[3], t3[6], u3[3];
+  step2<4>(net, A, a3);
+  step2<3>(a3, A, a2);
+  step2<2>(a2, A, a1);
+  step2<1>(a1, A, out);
+  step2<1>(a1, B, out + 1);
+  step2<2>(a2, B, t2);
+  step2<1>(t2, B, out + 2);
+  step2<3>(a3, B, t3);
+  step2<2>(t3, B, u3);
+  step2<1>(u3, B, out + 3);
 }
 
 // Whether the convex hull of a quartic curve's five control points keeps away from the origin
