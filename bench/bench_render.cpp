@@ -8,15 +8,25 @@
 //                    of incoherent rays (camera position to uniform points in the scene bounds),
 //                    traced through the scene on 2 threads; only the intersect calls are timed.
 //
-// A summary after the benchmarks gives each model's render time ÷ shading's at equal samples.
+//   G1/<scene>/<model>  `shading` and `quadric-g1` side by side on every thesis scene
+//                    (scenes/thesis: setups (a) and (b) with the triangle, tetrahedron,
+//                    icosahedron, torus and, when data/teapot.obj is there, the teapot) and on
+//                    the real-mesh grid (scenes/corpus, when QUADTRI_CORPUS names the corpus
+//                    folder): one 128×128, 16 spp render on 2 threads each.
+//
+// Summaries after the benchmarks give each model's render time ÷ shading's at equal samples,
+// and quadric-g1's ÷ shading's per scene.
 //
 //   quadtri_bench_render --benchmark_min_time=0.5
+//   QUADTRI_CORPUS=corpus quadtri_bench_render --benchmark_filter=G1/
 #include <benchmark/benchmark.h>
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <thread>
@@ -190,6 +200,85 @@ void rawModel(benchmark::State& state, const std::string& model, bool coherent) 
   state.counters["hit_fraction"] = double(hits) / double(rays.size());
 }
 
+/// A scene of the G1 comparison: its file (relative to scenes/) and the defines it needs.
+struct G1Scene {
+  std::string name, file;
+  SceneDefines defines;
+};
+
+std::vector<G1Scene> g1Scenes() {
+  std::vector<G1Scene> scenes;
+  for (const char* setup : {"a", "b"})
+    for (const char* object : {"triangle", "tetrahedron", "icosahedron", "torus", "teapot"}) {
+      const std::string name = std::string(setup) + "-" + object;
+      if (std::string(object) == "teapot" &&
+          !std::filesystem::exists(std::filesystem::path(QUADTRI_SOURCE_DIR) / "data/teapot.obj"))
+        continue;
+      scenes.push_back({name, "thesis/" + name + ".xml", {}});
+    }
+  if (const char* corpus = std::getenv("QUADTRI_CORPUS"))
+    for (const char* mesh : {"pinion", "armadillo", "cow", "fandisk", "elephant"})
+      scenes.push_back({std::string("grid-") + mesh,
+                        std::string("corpus/grid-") + mesh + ".xml",
+                        {{"corpus", std::filesystem::absolute(corpus).string()}}});
+  return scenes;
+}
+
+/// Mean render seconds per (scene, model) of the G1 comparison.
+std::map<std::pair<std::string, std::string>, double>& g1Seconds() {
+  static std::map<std::pair<std::string, std::string>, double> seconds;
+  return seconds;
+}
+
+/// The scene of the G1 comparison last asked for, built with `model` (once: the benchmark library
+/// calls a benchmark again to settle its iterations, and the builds stay out of the timing; only
+/// one is kept, the armadillo's sub-patches being hundreds of megabytes).
+BuiltScene& g1Built(const G1Scene& scene, const std::string& model) {
+  static std::pair<std::string, std::string> key;
+  static BuiltScene built;
+  if (key == std::pair(scene.name, model) && built.scene) return built;
+  built = BuiltScene{};
+  SceneDefines defines = scene.defines;
+  defines["res"] = std::to_string(kResolution);
+  defines["spp"] = std::to_string(kSamplesPerPixel);
+  built =
+      buildScene(loadSceneDescription(
+                     std::filesystem::path(QUADTRI_SOURCE_DIR) / "scenes" / scene.file, defines),
+                 model);
+  built.options.samplesPerPixel = kSamplesPerPixel;
+  built.options.threads = kThreads;
+  key = {scene.name, model};
+  return built;
+}
+
+/// Renders one scene of the G1 comparison with `model`.
+void renderG1Scene(benchmark::State& state, const G1Scene& scene, const std::string& model) {
+  const BuiltScene& built = g1Built(scene, model);
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const RenderResult result = render(*built.scene, *built.integrator, built.options);
+    benchmark::DoNotOptimize(result.image.pixels.data());
+    seconds += result.stats.seconds;
+  }
+  g1Seconds()[{scene.name, model}] = seconds / double(state.iterations());
+}
+
+/// quadric-g1's render time against shading's, scene by scene.
+void printG1Summary(const std::vector<G1Scene>& scenes) {
+  bool header = false;
+  for (const G1Scene& scene : scenes) {
+    const auto shading = g1Seconds().find({scene.name, "shading"});
+    const auto g1 = g1Seconds().find({scene.name, "quadric-g1"});
+    if (shading == g1Seconds().end() || g1 == g1Seconds().end()) continue;
+    if (!header)
+      fmt::print("\nquadric-g1 against shading at {}x{}, {} spp, {} threads:\n", kResolution,
+                 kResolution, kSamplesPerPixel, kThreads);
+    header = true;
+    fmt::print("  {:<16} shading {:8.3f} s  quadric-g1 {:8.3f} s  {:6.2f}x\n", scene.name,
+               shading->second, g1->second, g1->second / shading->second);
+  }
+}
+
 /// Each model's render time against shading's at the same resolution and samples per pixel.
 void printSummary() {
   const auto shading = renderSeconds().find("shading");
@@ -217,10 +306,18 @@ int main(int argc, char** argv) {
           ->Unit(benchmark::kMillisecond)
           ->UseManualTime();
   }
+  const std::vector<G1Scene> scenes = g1Scenes();
+  for (const G1Scene& scene : scenes)
+    for (const char* model : {"shading", "quadric-g1"})
+      benchmark::RegisterBenchmark(("G1/" + scene.name + "/" + model).c_str(), renderG1Scene, scene,
+                                   std::string(model))
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   printSummary();
+  printG1Summary(scenes);
   benchmark::Shutdown();
   return 0;
 }
