@@ -231,8 +231,8 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int depth
   s.hlo = floatDown(hlo - 1e-9 * size), s.hhi = floatUp(hhi + 1e-9 * size);
   s.lmin[0] = floatDown(l0 - 1e-9), s.lmin[1] = floatDown(l1 - 1e-9);
   s.lmin[2] = floatDown(l2 - 1e-9);
-  // The cone of the crosses of derivative control vectors: its axis the mean of their
-  // directions, its half-angle the largest angle to it.
+  // The cone of the crosses of derivative control vectors: its axis their sum (each weighted by
+  // its length, which spares a square root per cross), its half-angle the largest angle to it.
   Vec3 du[10], dv[10];
   int at = 0;
   for (int k = 0; k <= 3; ++k)
@@ -242,23 +242,28 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int depth
       dv[at] = net.b[size_t(BezierTriangle::index(j, k + 1))] - base;
     }
   Vec3 crosses[100];
+  double lengths2[100];
   Vec3 axis = Vec3::Zero();
   for (int a = 0; a < 10; ++a)
     for (int b = 0; b < 10; ++b) {
       Vec3& c = crosses[10 * a + b];
       c = du[a].cross(dv[b]);
-      const double len2 = c.squaredNorm();
-      if (!(len2 > 0.0)) return s;  // a vanishing cross: no cone
-      c *= 1.0 / std::sqrt(len2);
+      lengths2[10 * a + b] = c.squaredNorm();
+      if (!(lengths2[10 * a + b] > 0.0)) return s;  // a vanishing cross: no cone
       axis += c;
     }
   storeFloat(safeNormalized(axis, normal / std::sqrt(area2)), s.axis);
   Vec3 stored(s.axis[0], s.axis[1], s.axis[2]);
   stored *= 1.0 / stored.norm();
-  double cosMin = 1.0;
-  for (const Vec3& c : crosses) cosMin = std::min(cosMin, c.dot(stored));
+  // The least cosine², as (c·axis)² / |c|², every cross on the axis' side.
+  double cos2Min = 1.0;
+  for (int i = 0; i < 100; ++i) {
+    const double along = crosses[i].dot(stored);
+    if (!(along > 0.0)) return s;
+    cos2Min = std::min(cos2Min, along * along / lengths2[i]);
+  }
   // The sine of the half-angle, grown far beyond the rounding of these products and of the axis.
-  if (cosMin > 0.0) s.sinCone = floatUp(std::sqrt(std::max(0.0, 1.0 - cosMin * cosMin)) + 1e-6);
+  s.sinCone = floatUp(std::sqrt(std::max(0.0, 1.0 - cos2Min)) + 1e-6);
   return s;
 }
 
