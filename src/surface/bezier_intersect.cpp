@@ -319,6 +319,13 @@ class Tracer {
         }
         if (last) continue;
       }
+      // An injective node Newton found no root in: the winding number of its boundary tells
+      // whether it holds one (rendering queries; all-hits ones split as before).
+      if (sl.injective && mode_ != Mode::All) {
+        const RegionWinding w = netWinding(node.net, marginXY_);
+        if (w == RegionWinding::Outside) continue;
+        if (w == RegionWinding::Inside) wentOutside = false;  // its children try Newton again
+      }
       // Bisect: the children that survive culling, the nearer pushed last (popped first).
       Node& a = stack[top];
       Node& b = stack[top + 1];

@@ -111,4 +111,9 @@ bool traceBezier(const BezierTriangle& piece, const Vec3& o, const Vec3& d, doub
                  double tmax, Mode mode, Found& found, const Vec3* up = nullptr,
                  const BezierSubPatch* region = nullptr);
 
+// bezierRegionWinding for a net already in the line's frame (the line the z axis through the
+// origin, as the search's nets): the winding number of the net's boundary, in x and y, around
+// the origin, with `margin` as the search's rounding margin.
+RegionWinding netWinding(const Net& net, double margin);
+
 }  // namespace quadtri::bezier_detail

@@ -98,6 +98,57 @@ inline int crossing(const P2& p, const P2& q) {
 // Halvings of one edge curve before the query gives up: a hull 2^-12 of the edge's length.
 constexpr int kMaxHalvings = 12;
 
+// The winding number around the origin of the closed curve of three quartic edges (each edge's
+// last point the next one's first), for a boundary that is a simple closed curve: 0, ±1, or
+// Unknown where the curve passes within `margin` of the origin. Each edge's control polygon is
+// refined until no hull of its pieces holds the origin: then the curve and the polygon wind
+// around the origin alike (each piece and its polygon close a loop within a hull that misses it).
+RegionWinding boundaryWinding(const P2 (&edges)[3][5], double margin) {
+  int winding = 0;
+  for (int e = 0; e < 3; ++e) {
+    P2 stack[kMaxHalvings + 2][5];
+    int depth[kMaxHalvings + 2];
+    int top = 0;
+    std::copy(edges[e], edges[e] + 5, stack[0]);
+    depth[0] = 0;
+    ++top;
+    while (top > 0) {
+      --top;
+      const P2* c = stack[top];
+      if (hullExcludesOrigin(c, margin)) {
+        for (int i = 0; i < 4; ++i) winding += crossing(c[i], c[i + 1]);
+        continue;
+      }
+      if (depth[top] >= kMaxHalvings) return RegionWinding::Unknown;  // the curve grazes it
+      P2 left[5], right[5];
+      halve(c, left, right);
+      const int next = depth[top] + 1;
+      // The right half first on the stack, so the left is walked first (the order of the
+      // segments does not change the sum, but keeps the stack within one slot per level).
+      std::copy(right, right + 5, stack[top]);
+      depth[top] = next;
+      std::copy(left, left + 5, stack[top + 1]);
+      depth[top + 1] = next;
+      top += 2;
+    }
+  }
+  if (winding == 0) return RegionWinding::Outside;
+  return winding == 1 || winding == -1 ? RegionWinding::Inside : RegionWinding::Unknown;
+}
+
+// The boundary rows of a 2D net: corner 0 → 1 (k = 0), 1 → 2 (i = 0) and 2 → 0 (j = 0).
+template <typename P>
+void boundaryRows(const P* net, P2 (&edges)[3][5]) {
+  for (int m = 0; m <= 4; ++m) {
+    const P& a = net[BezierTriangle::index(m, 0)];
+    const P& b = net[BezierTriangle::index(4 - m, m)];
+    const P& c = net[BezierTriangle::index(0, 4 - m)];
+    edges[0][m] = {a.x, a.y};
+    edges[1][m] = {b.x, b.y};
+    edges[2][m] = {c.x, c.y};
+  }
+}
+
 }  // namespace
 
 RegionWinding bezierRegionWinding(const BezierTriangle& piece, const double* cu, const double* cv,
@@ -120,42 +171,21 @@ RegionWinding bezierRegionWinding(const BezierTriangle& piece, const double* cu,
                           {1.0 - cu[1] - cv[1], cu[1], cv[1]},
                           {1.0 - cu[2] - cv[2], cu[2], cv[2]}};
   P2 edges[3][5];
-  for (int e = 0; e < 3; ++e) edgeCurve(net, corner[e], corner[(e + 1) % 3], edges[e]);
-  for (int e = 0; e < 3; ++e) edges[e][4] = edges[(e + 1) % 3][0];
-  // The closed control polygon, each edge's refined until no hull holds the origin: then the
-  // boundary and the polygon wind around the origin alike (each edge and its polygon close a
-  // loop within a hull that misses it).
-  int winding = 0;
-  for (int e = 0; e < 3; ++e) {
-    P2 stack[kMaxHalvings + 2][5];
-    int depth[kMaxHalvings + 2];
-    int top = 0;
-    std::copy(edges[e], edges[e] + 5, stack[0]);
-    depth[0] = 0;
-    ++top;
-    while (top > 0) {
-      --top;
-      const P2* c = stack[top];
-      if (hullExcludesOrigin(c, margin)) {
-        for (int i = 0; i < 4; ++i) winding += crossing(c[i], c[i + 1]);
-        continue;
-      }
-      if (depth[top] >= kMaxHalvings)
-        return RegionWinding::Unknown;  // the line grazes the boundary
-      P2 left[5], right[5];
-      halve(c, left, right);
-      const int next = depth[top] + 1;
-      // The right half first on the stack, so the left is walked first (the order of the
-      // segments does not change the sum, but keeps the stack within one slot per level).
-      std::copy(right, right + 5, stack[top]);
-      depth[top] = next;
-      std::copy(left, left + 5, stack[top + 1]);
-      depth[top + 1] = next;
-      top += 2;
-    }
+  const bool whole =
+      cu[0] == 0.0 && cv[0] == 0.0 && cu[1] == 1.0 && cv[1] == 0.0 && cu[2] == 0.0 && cv[2] == 1.0;
+  if (whole) {
+    boundaryRows(net, edges);  // the piece's own boundary: no blossoms needed
+  } else {
+    for (int e = 0; e < 3; ++e) edgeCurve(net, corner[e], corner[(e + 1) % 3], edges[e]);
+    for (int e = 0; e < 3; ++e) edges[e][4] = edges[(e + 1) % 3][0];
   }
-  if (winding == 0) return RegionWinding::Outside;
-  return winding == 1 || winding == -1 ? RegionWinding::Inside : RegionWinding::Unknown;
+  return boundaryWinding(edges, margin);
+}
+
+RegionWinding bezier_detail::netWinding(const Net& net, double margin) {
+  P2 edges[3][5];
+  boundaryRows(net.data(), edges);
+  return boundaryWinding(edges, margin);
 }
 
 }  // namespace quadtri

@@ -230,11 +230,12 @@ TEST(BezierSubPatch, ParentConeCertifiesTheParentRegion) {
 // The winding number of a region's projected boundary against every root of the whole piece: on
 // lines its cone certifies, aimed near the region (a third of them within 1e-3 of an edge),
 // Outside exactly when no root of the piece lies in the region, Inside when one does.
-TEST(BezierSubPatch, WindingOfTheBoundaryTellsWhetherALineMeetsTheRegion) {
-  const std::vector<BezierTriangle> pieces = curvedPieces();
-  const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
-  Pcg32 rng(67);
-  int inside = 0, outside = 0, unknown = 0;
+// Regions of the curved pieces, and whole pieces (the winding number of the net's own boundary
+// rows, as the subdivision search takes it): gently curved paraboloid pieces, one region each.
+void expectWindingTellsWhetherALineMeetsTheRegion(const std::vector<BezierTriangle>& pieces,
+                                                  const std::vector<BezierSubPatch>& subs,
+                                                  Pcg32& rng, int& inside, int& outside,
+                                                  int& unknown) {
   for (size_t i = 0; i < subs.size(); i += 2) {
     const BezierSubPatch& s = subs[i];
     if (s.sinCone > 0.9f) continue;
@@ -285,8 +286,34 @@ TEST(BezierSubPatch, WindingOfTheBoundaryTellsWhetherALineMeetsTheRegion) {
       (in ? inside : outside) += 1;
     }
   }
-  EXPECT_GT(inside, 300);
-  EXPECT_GT(outside, 1000);
+}
+
+TEST(BezierSubPatch, WindingOfTheBoundaryTellsWhetherALineMeetsTheRegion) {
+  Pcg32 rng(67);
+  {
+    const std::vector<BezierTriangle> pieces = curvedPieces();
+    int inside = 0, outside = 0, unknown = 0;
+    expectWindingTellsWhetherALineMeetsTheRegion(pieces, bezierSubPatches(pieces), rng, inside,
+                                                 outside, unknown);
+    EXPECT_GT(inside, 300);
+    EXPECT_GT(outside, 1000);
+    EXPECT_LT(unknown, 5);
+  }
+  std::vector<BezierTriangle> gentle;
+  for (int i = 0; i < 40; ++i) {
+    const Vec2 a(rng.nextDouble() - 0.5, rng.nextDouble() - 0.5);
+    gentle.push_back(paraboloidPiece(a, a + Vec2(0.3, 0.05 * rng.nextDouble()),
+                                     a + Vec2(0.1 * rng.nextDouble(), 0.3)));
+  }
+  // One region per piece (a budget of one each and a cone wide enough): the whole piece.
+  const std::vector<BezierSubPatch> whole = bezierSubPatches(gentle, 80.0, gentle.size());
+  ASSERT_EQ(whole.size(), gentle.size());
+  for (const BezierSubPatch& s : whole) ASSERT_EQ(s.depth, 0);
+  int inside = 0, outside = 0, unknown = 0;
+  for (int pass = 0; pass < 12; ++pass)
+    expectWindingTellsWhetherALineMeetsTheRegion(gentle, whole, rng, inside, outside, unknown);
+  EXPECT_GT(inside, 250);
+  EXPECT_GT(outside, 500);
   EXPECT_LT(unknown, 5);
 }
 
@@ -354,7 +381,7 @@ TEST(BezierSubPatch, HitsAreTheWholePieceHits) {
   const std::vector<BezierTriangle> pieces = curvedPieces();
   const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
   Pcg32 rng(47);
-  int hits = 0, compared = 0;
+  int hits = 0, compared = 0, againstAll = 0;
   for (size_t p = 0; p < pieces.size(); ++p) {
     const BezierTriangle& piece = pieces[p];
     const Vec3 centre = 0.5 * (piece.bounds.lo + piece.bounds.hi);
@@ -374,6 +401,24 @@ TEST(BezierSubPatch, HitsAreTheWholePieceHits) {
       const double tmax = i % 5 == 0 ? kInfinity : 4.0 * size * rng.nextDouble();
       BezierHit whole;
       const bool wholeHit = intersectBezierTriangle(piece, o, d, 0.0, tmax, whole);
+      // The nearest of every root (the all-hits search, which never rules a node out by its
+      // boundary's winding number) is the nearest-hit search's; on every fourth ray (it is slow).
+      std::vector<BezierHit> roots;
+      if (i % 4 == 3) intersectBezierTriangleAll(piece, o, d, 0.0, tmax, roots);
+      BezierHit nearestRoot;
+      for (const BezierHit& h : roots)
+        if (h.t < nearestRoot.t) nearestRoot = h;
+      if (wholeHit && !roots.empty() && p != pieces.size() - 1) {
+        ++againstAll;
+        EXPECT_NEAR(whole.t, nearestRoot.t, 1e-9 * (size + whole.t)) << p << " " << i;
+      }
+      if (i % 4 == 3 && wholeHit != !roots.empty() && p != pieces.size() - 1) {
+        // Only where the line touches the piece within 1e-6 of a double root.
+        const BezierHit& h = wholeHit ? whole : nearestRoot;
+        Vec3 du, dv;
+        piece.derivatives(h.u, h.v, du, dv);
+        EXPECT_LT(std::abs(d.dot(safeNormalized(du.cross(dv)))), 1e-4) << p << " " << i;
+      }
       BezierHit best;
       bool anyHit = false, occluded = false;
       for (const BezierSubPatch& s : subs) {
@@ -410,6 +455,7 @@ TEST(BezierSubPatch, HitsAreTheWholePieceHits) {
     }
   }
   EXPECT_GT(compared, 3000);
+  EXPECT_GT(againstAll, 800);
   EXPECT_GE(hits, compared);
 }
 
