@@ -164,7 +164,7 @@ RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geome
   hit.primitive = primitive;
   hit.u = h.u;
   hit.v = h.v;
-  hit.geometricNormal = piece.normal(h.u, h.v);
+  piece.positionAndNormal(h.u, h.v, hit.point, hit.geometricNormal);
   // Where ∂u × ∂v vanishes (a collapsed corner), the normal a hair towards the centre.
   if (hit.geometricNormal.squaredNorm() == 0.0)
     hit.geometricNormal =

@@ -167,7 +167,7 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
   if (record.bezier) {
     // The exact surface point of the piece at the double-precision (u, v) of the hit.
     const BezierTriangle& piece = (*record.bezier)[hit.primitive];
-    si.p = piece.position(hit.u, hit.v);
+    si.p = hit.point;
     si.geometricNormal = hit.geometricNormal;
     if (si.geometricNormal.squaredNorm() == 0.0) si.geometricNormal = -ray.direction;
     si.shadingNormal = si.geometricNormal;

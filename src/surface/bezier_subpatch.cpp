@@ -269,14 +269,6 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int depth
 
 }  // namespace
 
-void BezierSubPatch::corners(double* u, double* v) const {
-  for (int c = 0; c < 3; ++c) u[c] = cu[c] * kCornerUnit, v[c] = cv[c] * kCornerUnit;
-}
-
-void BezierSubPatch::parentCorners(double* u, double* v) const {
-  for (int c = 0; c < 3; ++c) u[c] = parentU[c] * kCornerUnit, v[c] = parentV[c] * kCornerUnit;
-}
-
 Bounds3 BezierSubPatch::bounds() const {
   Bounds3 b;
   b.lo = Vec3(lo[0], lo[1], lo[2]);

@@ -77,6 +77,23 @@ Vec3 BezierTriangle::normal(double u, double v) const {
   return safeNormalized(orientation * du.cross(dv), Vec3::Zero());
 }
 
+void BezierTriangle::positionAndNormal(double u, double v, Vec3& p, Vec3& n) const {
+  // b(u, v) = Σ_{i+j+k=3} B³_ijk (b_{i+1,j,k} + u (b_{i,j+1,k} − b_{i+1,j,k}) + v (b_{i,j,k+1} −
+  // b_{i+1,j,k})): the derivatives' sums (as derivatives()) and one more.
+  const auto basis = bernstein<3>(1.0 - u - v, u, v);
+  Vec3 a = Vec3::Zero(), du = Vec3::Zero(), dv = Vec3::Zero();
+  for (int k = 0; k <= 3; ++k)
+    for (int j = 0; j + k <= 3; ++j) {
+      const double w = basis[size_t(index3(j, k))];
+      const Vec3& base = b[size_t(index(j, k))];
+      a += w * base;
+      du += w * (b[size_t(index(j + 1, k))] - base);
+      dv += w * (b[size_t(index(j, k + 1))] - base);
+    }
+  p = a + u * du + v * dv;
+  n = safeNormalized(orientation * (4.0 * du).cross(4.0 * dv), Vec3::Zero());
+}
+
 void BezierTriangle::updateBounds() {
   bounds = Bounds3{};
   for (const Vec3& p : b) bounds.extend(p);

@@ -63,6 +63,23 @@ TEST(BezierIntersect, SubdivisionReproducesThePiece) {
   }
 }
 
+// positionAndNormal, from one pass over the net, gives position() and normal() up to rounding.
+TEST(BezierIntersect, PositionAndNormalTogether) {
+  Pcg32 rng(5);
+  for (int i = 0; i < 20; ++i) {
+    BezierTriangle piece = bumpyPiece(Vec3(0, 0, 0), Vec3(1, 0.1, 0), Vec3(0.2, 1, 0), 0.5, rng);
+    piece.orientation = i % 2 ? 1.0 : -1.0;
+    for (int k = 0; k < 20; ++k) {
+      const Vec2 uv = domainPoint(rng);
+      Vec3 p, n;
+      piece.positionAndNormal(uv.x(), uv.y(), p, n);
+      EXPECT_NEAR((p - piece.position(uv.x(), uv.y())).norm(), 0.0, 1e-14);
+      EXPECT_NEAR((n - piece.normal(uv.x(), uv.y())).norm(), 0.0, 1e-15);
+      EXPECT_NEAR(n.norm(), 1.0, 1e-15);
+    }
+  }
+}
+
 TEST(BezierIntersect, FlatPieceReturnsTheAimedAtPoint) {
   const BezierTriangle piece =
       flatPiece(Vec3(0.3, -0.2, 1.0), Vec3(2.1, 0.4, 0.7), Vec3(0.1, 1.9, 1.5));

@@ -32,6 +32,9 @@ struct RayHit {
   uint32_t primitive = ~0u;
   double u = 0, v = 0;  ///< barycentric coordinates of the hit (triangles, Bézier pieces)
   Vec3 geometricNormal = Vec3::Zero();  ///< unit, not flipped towards the ray (zero: no hit)
+  /// The surface point at (u, v) of a Bézier piece's hit (evaluated with the normal); zero for
+  /// other hits, whose point is the ray's at t.
+  Vec3 point = Vec3::Zero();
   bool valid() const { return geometry != ~0u; }
 };
 

@@ -122,9 +122,13 @@ struct BezierSubPatch {
   uint8_t depth = 0;   ///< splits from the piece, in bisections (0: the whole piece)
 
   /// The region's corners in the piece's (u, v).
-  void corners(double* u, double* v) const;
+  void corners(double* u, double* v) const {
+    for (int c = 0; c < 3; ++c) u[c] = cu[c] * kCornerUnit, v[c] = cv[c] * kCornerUnit;
+  }
   /// Its parent's.
-  void parentCorners(double* u, double* v) const;
+  void parentCorners(double* u, double* v) const {
+    for (int c = 0; c < 3; ++c) u[c] = parentU[c] * kCornerUnit, v[c] = parentV[c] * kCornerUnit;
+  }
   Bounds3 bounds() const;
 };
 

@@ -36,6 +36,8 @@ struct BezierTriangle {
   void derivatives(double u, double v, Vec3& du, Vec3& dv) const;
   /// orientation · (∂b/∂u × ∂b/∂v), normalised; zero where the cross product vanishes.
   Vec3 normal(double u, double v) const;
+  /// The position and the normal (as normal()) together, from one pass over the net.
+  void positionAndNormal(double u, double v, Vec3& p, Vec3& n) const;
   /// Recomputes `bounds` from the control points.
   void updateBounds();
   /// True where the piece is its corner triangle, parametrised linearly: every control point
