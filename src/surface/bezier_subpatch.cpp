@@ -109,13 +109,16 @@ inline double dotf(const Vec3& a, const float* b) {
   return a.x() * double(b[0]) + a.y() * double(b[1]) + a.z() * double(b[2]);
 }
 
-// The fast path of a sub-patch: the prism test, then Newton from where the ray crosses the
-// corner triangle's plane. Hit and None are final: the cone proves that the ray meets the region
-// at most once. Candidate is a root of the region in range, but where the ray may meet the region
-// twice; Unknown leaves the region to the subdivision search. `from`: see
-// intersectBezierSubPatch.
-Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
-                     const Vec3& d, double tmin, double tmax, const Vec2* from, BezierHit& hit) {
+// The ray against a sub-patch's prism, in a few dot products: false when it misses. Otherwise
+// `prism` holds the ray's height above the corner triangle's plane (ho + t·hd) and its
+// barycentric coordinates 1 and 2 there (a + t·b) for the fast path. Small and inline, apart
+// from the solve: most calls end here, and they keep to a little code.
+struct PrismCrossing {
+  double ho, hd, a1, b1, a2, b2;
+};
+
+inline bool crossesPrism(const BezierSubPatch& sub, const Vec3& o, const Vec3& d, double tmin,
+                         double tmax, PrismCrossing& prism) {
   const Vec3 r = o - sub.p0;
   const double ho = dotf(r, sub.n), hd = dotf(d, sub.n);
   // Rounding of the projections from a far origin: far below this.
@@ -126,9 +129,9 @@ Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, con
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
-    if (!(t0 <= t1)) return Solved::None;
+    if (!(t0 <= t1)) return false;
   } else if (ho < double(sub.hlo) - far || ho > double(sub.hhi) + far) {
-    return Solved::None;
+    return false;
   }
   // The corner triangle's barycentric coordinates 1 and 2 along the ray: a + t·b; the largest
   // over [t0, t1] must reach each control point's least.
@@ -138,7 +141,21 @@ Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, con
   auto reach = [&](double a, double b) { return b > 0.0 ? a + t1 * b : b < 0.0 ? a + t0 * b : a; };
   if (reach(a1, b1) < double(sub.lmin[1]) - farL || reach(a2, b2) < double(sub.lmin[2]) - farL ||
       reach(1.0 - a1 - a2, -b1 - b2) < double(sub.lmin[0]) - farL)
-    return Solved::None;
+    return false;
+  prism = {ho, hd, a1, b1, a2, b2};
+  return true;
+}
+
+// The fast path of a sub-patch the ray crosses the prism of: Newton from where the ray crosses
+// the corner triangle's plane. Hit and None are final: the cone proves that the ray meets the
+// region at most once. Candidate is a root of the region in range, but where the ray may meet
+// the region twice; Unknown leaves the region to the subdivision search. `from`: see
+// intersectBezierSubPatch.
+[[gnu::noinline]] Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub,
+                                       const Vec3& o, const Vec3& d, double tmin, double tmax,
+                                       const Vec2* from, const PrismCrossing& prism,
+                                       BezierHit& hit) {
+  const auto [ho, hd, a1, b1, a2, b2] = prism;
   // At most one root in the region when every projected cross of derivative control vectors has
   // the sign of d·axis (the injectivity test of slopes(), from the precomputed cone).
   const double da = dotf(d, sub.axis), sinCone = double(sub.sinCone);
@@ -504,9 +521,10 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
 bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
                              const Vec3& d, double tmin, double tmax, BezierHit& hit,
                              const Vec2* from) {
-  if (!(tmin < tmax)) return false;
+  PrismCrossing prism;
+  if (!(tmin < tmax) || !crossesPrism(sub, o, d, tmin, tmax, prism)) return false;
   BezierHit candidate;
-  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, candidate)) {
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, prism, candidate)) {
     case Solved::Hit:
       hit = candidate;
       return true;
@@ -532,9 +550,10 @@ bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& 
 
 bool occludesBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
                             const Vec3& d, double tmin, double tmax, const Vec2* from) {
-  if (!(tmin < tmax)) return false;
+  PrismCrossing prism;
+  if (!(tmin < tmax) || !crossesPrism(sub, o, d, tmin, tmax, prism)) return false;
   BezierHit hit;
-  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, hit)) {
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, prism, hit)) {
     case Solved::Hit:
     case Solved::Candidate:
       return true;
