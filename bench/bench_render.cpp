@@ -219,10 +219,17 @@ std::vector<G1Scene> g1Scenes() {
       scenes.push_back({name, "thesis/" + name + ".xml", {}});
     }
   if (const char* corpus = std::getenv("QUADTRI_CORPUS"))
-    for (const char* mesh : {"pinion", "armadillo", "cow", "fandisk", "elephant"})
+    for (const char* mesh : {"pinion", "armadillo", "cow", "fandisk", "elephant"}) {
+      const std::filesystem::path folder = std::filesystem::absolute(corpus);
+      if (!std::filesystem::exists(folder / "cgal" / (std::string(mesh) + ".off"))) {
+        fmt::print(stderr, "G1/grid-{}: {} has no cgal/{}.off; skipped\n", mesh, folder.string(),
+                   mesh);
+        continue;
+      }
       scenes.push_back({std::string("grid-") + mesh,
                         std::string("corpus/grid-") + mesh + ".xml",
-                        {{"corpus", std::filesystem::absolute(corpus).string()}}});
+                        {{"corpus", folder.string()}}});
+    }
   return scenes;
 }
 
@@ -237,9 +244,19 @@ const char* const kG1Models[2] = {"shading", "quadric-g1"};
 /// The scene of the G1 comparison last asked for, built with both models (once: the benchmark
 /// library calls a benchmark again to settle its iterations, and the builds stay out of the
 /// timing; only one scene is kept, the armadillo's sub-patches being hundreds of megabytes).
-std::array<BuiltScene, 2>& g1Built(const G1Scene& scene) {
+std::string& g1Key() {
   static std::string key;
+  return key;
+}
+
+std::array<BuiltScene, 2>& g1Pair() {
   static std::array<BuiltScene, 2> built;
+  return built;
+}
+
+std::array<BuiltScene, 2>& g1Built(const G1Scene& scene) {
+  std::string& key = g1Key();
+  std::array<BuiltScene, 2>& built = g1Pair();
   if (key == scene.name && built[0].scene) return built;
   built = {};
   SceneDefines defines = scene.defines;
@@ -268,7 +285,10 @@ void compareG1(benchmark::State& state, const G1Scene& scene) {
       benchmark::DoNotOptimize(result.image.pixels.data());
       best[m] = std::min(best[m], result.stats.seconds);
     }
-  g1Seconds()[scene.name] = best;
+  // The benchmark library may call this more than once per scene: keep the fastest of all.
+  auto [it, inserted] = g1Seconds().try_emplace(scene.name, best);
+  if (!inserted)
+    for (size_t m = 0; m < 2; ++m) it->second[m] = std::min(it->second[m], best[m]);
   state.counters["shading_s"] = best[0];
   state.counters["g1_s"] = best[1];
   state.counters["g1/shading"] = best[1] / best[0];
@@ -329,6 +349,8 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   printSummary();
   printG1Summary(scenes);
+  g1Pair() = {};  // the Embree scenes go before main returns, not after the library's state
+  g1Key().clear();
   benchmark::Shutdown();
   return 0;
 }

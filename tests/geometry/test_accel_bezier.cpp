@@ -274,6 +274,8 @@ TEST(Accel, FlatBezierPiecesAreTracedAsTheirTriangles) {
     EXPECT_NEAR(hit.v, best.v, 1e-9) << i;
     EXPECT_NEAR((hit.geometricNormal - pieces[bestPiece].normal(best.u, best.v)).norm(), 0.0,
                 1e-12);
+    // The hit's point is the piece's at its (u, v), flat pieces traced as triangles included.
+    EXPECT_NEAR((hit.point - pieces[bestPiece].position(hit.u, hit.v)).norm(), 0.0, 1e-12) << i;
   }
   EXPECT_GT(flatHits, 1000);
   EXPECT_GT(curvedHits, 1000);
