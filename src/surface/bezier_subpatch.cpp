@@ -33,6 +33,42 @@ inline void evaluatePiece(const BezierTriangle& piece, double u, double v, P3& p
   evaluateFromCubic(a, u, v, p, du, dv);
 }
 
+// evaluatePiece with the second derivatives too, from the same de Casteljau steps: the quadratic
+// net b after two steps gives ∂²/∂u² = 12 (b_020 − 2 b_110 + b_200) and its kin.
+inline void evaluatePiece2(const BezierTriangle& piece, double u, double v, P3& p, P3& du, P3& dv,
+                           P3& duu, P3& duv, P3& dvv) {
+  const double w0 = 1.0 - u - v;
+  const Bary w{w0, u, v};
+  P3 a[10], b[6], c[3];
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j + k < 4; ++j) {
+      const Vec3& A = piece.b[size_t(netIndex(4, j, k))];
+      const Vec3& B = piece.b[size_t(netIndex(4, j + 1, k))];
+      const Vec3& C = piece.b[size_t(netIndex(4, j, k + 1))];
+      a[netIndex(3, j, k)] = {w0 * A.x() + u * B.x() + v * C.x(),
+                              w0 * A.y() + u * B.y() + v * C.y(),
+                              w0 * A.z() + u * B.z() + v * C.z()};
+    }
+  casteljauStep(a, 3, w, b);
+  const P3& b200 = b[netIndex(2, 0, 0)];
+  const P3& b110 = b[netIndex(2, 1, 0)];
+  const P3& b101 = b[netIndex(2, 0, 1)];
+  const P3& b020 = b[netIndex(2, 2, 0)];
+  const P3& b011 = b[netIndex(2, 1, 1)];
+  const P3& b002 = b[netIndex(2, 0, 2)];
+  duu = {12 * (b020.x - 2 * b110.x + b200.x), 12 * (b020.y - 2 * b110.y + b200.y),
+         12 * (b020.z - 2 * b110.z + b200.z)};
+  duv = {12 * (b011.x - b110.x - b101.x + b200.x), 12 * (b011.y - b110.y - b101.y + b200.y),
+         12 * (b011.z - b110.z - b101.z + b200.z)};
+  dvv = {12 * (b002.x - 2 * b101.x + b200.x), 12 * (b002.y - 2 * b101.y + b200.y),
+         12 * (b002.z - 2 * b101.z + b200.z)};
+  casteljauStep(b, 2, w, c);
+  p = {w0 * c[0].x + u * c[1].x + v * c[2].x, w0 * c[0].y + u * c[1].y + v * c[2].y,
+       w0 * c[0].z + u * c[1].z + v * c[2].z};
+  du = {4 * (c[1].x - c[0].x), 4 * (c[1].y - c[0].y), 4 * (c[1].z - c[0].z)};
+  dv = {4 * (c[2].x - c[0].x), 4 * (c[2].y - c[0].y), 4 * (c[2].z - c[0].z)};
+}
+
 inline double dot(const P3& a, const P3& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
@@ -52,16 +88,31 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
   const double boxSize = (piece.bounds.hi - piece.bounds.lo).maxCoeff();
   const double dd = d.squaredNorm();
   double previous = kInfinity;
-  P3 p, pu, pv;
+  P3 p, pu, pv, puu, puv, pvv;
   for (int it = 0; it < 24; ++it) {
-    evaluatePiece(piece, u, v, p, pu, pv);
+    if (it == 0)
+      evaluatePiece2(piece, u, v, p, pu, pv, puu, puv, pvv);
+    else
+      evaluatePiece(piece, u, v, p, pu, pv);
     // Solve [pu pv −d]·(su, sv, st) = o + t·d − p by Cramer's rule.
     const P3 f{o.x() + t * d.x() - p.x, o.y() + t * d.y() - p.y, o.z() + t * d.z() - p.z};
     const P3 bc = cross(pv, nd), ca = cross(nd, pu), ab = cross(pu, pv);
     const double det = dot(pu, bc);
     if (!(std::abs(det) > 0.0)) return false;
-    const double su = dot(f, bc) / det, sv = dot(f, ca) / det, st = dot(f, ab) / det;
+    double su = dot(f, bc) / det, sv = dot(f, ca) / det, st = dot(f, ab) / det;
     if (!std::isfinite(su) || !std::isfinite(sv) || !std::isfinite(st)) return false;
+    if (it == 0) {
+      // The first step from the start is Chebyshev's: the Newton step (su, sv, st) corrected by
+      // the curvature it crosses, J⁻¹ · ½ H(s, s), when that correction is small. Its error is
+      // cubic in the start's, so the next step usually settles (two evaluations, not three).
+      const P3 h{0.5 * (puu.x * su * su + 2 * puv.x * su * sv + pvv.x * sv * sv),
+                 0.5 * (puu.y * su * su + 2 * puv.y * su * sv + pvv.y * sv * sv),
+                 0.5 * (puu.z * su * su + 2 * puv.z * su * sv + pvv.z * sv * sv)};
+      const double cu = dot(h, bc) / det, cv = dot(h, ca) / det, ct = dot(h, ab) / det;
+      if (std::isfinite(cu) && std::isfinite(cv) && std::isfinite(ct) &&
+          std::max(std::abs(cu), std::abs(cv)) < 0.5 * std::max(std::abs(su), std::abs(sv)))
+        su -= cu, sv -= cv, st -= ct;
+    }
     const double step = std::max(std::abs(su), std::abs(sv));
     const bool settled = step < 1e-9;
     const bool quadratic = step < 1e-7 && step <= 10.0 * previous * previous;
