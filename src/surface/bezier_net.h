@@ -81,17 +81,23 @@ inline void childCorners(int m, double* cu, double* cv) {
   }
 }
 
-// The last two de Casteljau steps at (u, v) from a degree-3 net `a`: the point and the first
+// The last de Casteljau step at (u, v) from a degree-2 net `b`: the point and the first
 // derivatives of the degree-4 net it came from.
-inline void evaluateFromCubic(const P3* a, double u, double v, P3& p, P3& du, P3& dv) {
+inline void evaluateFromQuadratic(const P3* b, double u, double v, P3& p, P3& du, P3& dv) {
   const Bary w{1.0 - u - v, u, v};
-  P3 b[6], c[3];
-  casteljauStep(a, 3, w, b);
+  P3 c[3];
   casteljauStep(b, 2, w, c);
   p = {w.w0 * c[0].x + u * c[1].x + v * c[2].x, w.w0 * c[0].y + u * c[1].y + v * c[2].y,
        w.w0 * c[0].z + u * c[1].z + v * c[2].z};
   du = {4 * (c[1].x - c[0].x), 4 * (c[1].y - c[0].y), 4 * (c[1].z - c[0].z)};
   dv = {4 * (c[2].x - c[0].x), 4 * (c[2].y - c[0].y), 4 * (c[2].z - c[0].z)};
+}
+
+// The last two de Casteljau steps at (u, v) from a degree-3 net `a` (as above).
+inline void evaluateFromCubic(const P3* a, double u, double v, P3& p, P3& du, P3& dv) {
+  P3 b[6];
+  casteljauStep(a, 3, Bary{1.0 - u - v, u, v}, b);
+  evaluateFromQuadratic(b, u, v, p, du, dv);
 }
 
 enum class Mode { Nearest, Any, All };

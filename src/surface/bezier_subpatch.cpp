@@ -17,10 +17,9 @@ using namespace bezier_detail;
 
 namespace {
 
-// Position and first derivatives of the piece's own (3D) net at (u, v).
-inline void evaluatePiece(const BezierTriangle& piece, double u, double v, P3& p, P3& du, P3& dv) {
+// The first de Casteljau step of the piece's own (3D) net at (u, v): a cubic net.
+inline void cubicNet(const BezierTriangle& piece, double u, double v, P3* a) {
   const double w0 = 1.0 - u - v;
-  P3 a[10];
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j + k < 4; ++j) {
       const Vec3& A = piece.b[size_t(netIndex(4, j, k))];
@@ -30,6 +29,12 @@ inline void evaluatePiece(const BezierTriangle& piece, double u, double v, P3& p
                               w0 * A.y() + u * B.y() + v * C.y(),
                               w0 * A.z() + u * B.z() + v * C.z()};
     }
+}
+
+// Position and first derivatives of the piece at (u, v).
+inline void evaluatePiece(const BezierTriangle& piece, double u, double v, P3& p, P3& du, P3& dv) {
+  P3 a[10];
+  cubicNet(piece, u, v, a);
   evaluateFromCubic(a, u, v, p, du, dv);
 }
 
@@ -37,18 +42,9 @@ inline void evaluatePiece(const BezierTriangle& piece, double u, double v, P3& p
 // net b after two steps gives ∂²/∂u² = 12 (b_020 − 2 b_110 + b_200) and its kin.
 inline void evaluatePiece2(const BezierTriangle& piece, double u, double v, P3& p, P3& du, P3& dv,
                            P3& duu, P3& duv, P3& dvv) {
-  const double w0 = 1.0 - u - v;
-  const Bary w{w0, u, v};
-  P3 a[10], b[6], c[3];
-  for (int k = 0; k < 4; ++k)
-    for (int j = 0; j + k < 4; ++j) {
-      const Vec3& A = piece.b[size_t(netIndex(4, j, k))];
-      const Vec3& B = piece.b[size_t(netIndex(4, j + 1, k))];
-      const Vec3& C = piece.b[size_t(netIndex(4, j, k + 1))];
-      a[netIndex(3, j, k)] = {w0 * A.x() + u * B.x() + v * C.x(),
-                              w0 * A.y() + u * B.y() + v * C.y(),
-                              w0 * A.z() + u * B.z() + v * C.z()};
-    }
+  const Bary w{1.0 - u - v, u, v};
+  P3 a[10], b[6];
+  cubicNet(piece, u, v, a);
   casteljauStep(a, 3, w, b);
   const P3& b200 = b[netIndex(2, 0, 0)];
   const P3& b110 = b[netIndex(2, 1, 0)];
@@ -62,11 +58,7 @@ inline void evaluatePiece2(const BezierTriangle& piece, double u, double v, P3& 
          12 * (b011.z - b110.z - b101.z + b200.z)};
   dvv = {12 * (b002.x - 2 * b101.x + b200.x), 12 * (b002.y - 2 * b101.y + b200.y),
          12 * (b002.z - 2 * b101.z + b200.z)};
-  casteljauStep(b, 2, w, c);
-  p = {w0 * c[0].x + u * c[1].x + v * c[2].x, w0 * c[0].y + u * c[1].y + v * c[2].y,
-       w0 * c[0].z + u * c[1].z + v * c[2].z};
-  du = {4 * (c[1].x - c[0].x), 4 * (c[1].y - c[0].y), 4 * (c[1].z - c[0].z)};
-  dv = {4 * (c[2].x - c[0].x), 4 * (c[2].y - c[0].y), 4 * (c[2].z - c[0].z)};
+  evaluateFromQuadratic(b, u, v, p, du, dv);
 }
 
 inline double dot(const P3& a, const P3& b) {

@@ -59,6 +59,21 @@ Vec3 vec(const float* f) {
   return Vec3(f[0], f[1], f[2]);
 }
 
+// The half-angle of a cone stored as its sine (2: no cone, 90°).
+double coneAngle(float sinCone) {
+  return std::asin(std::min(1.0, double(sinCone)));
+}
+
+// A random unit direction across the unit `axis`.
+Vec3 sideways(const Vec3& axis, Pcg32& rng) {
+  return safeNormalized(axis.cross(uniformDirection(rng)));
+}
+
+// The direction `angle` from the unit `axis` towards `side` (across it), times `sign`.
+Vec3 tilted(const Vec3& axis, const Vec3& side, double angle, double sign) {
+  return sign * (std::cos(angle) * axis + std::sin(angle) * side);
+}
+
 TEST(BezierSubPatch, RegionsTileEveryPiece) {
   const std::vector<BezierTriangle> pieces = curvedPieces();
   const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);
@@ -162,12 +177,10 @@ TEST(BezierSubPatch, ConeCertifiesOneSignOfTheProjectedJacobian) {
     for (int r = 0; r < 8; ++r) {
       // Directions just inside the cone's complement, where the fast path trusts it.
       // The angle to the axis: just below 90° less the cone's half-angle.
-      const double angle =
-          0.5 * kPi - std::asin(std::min(1.0, double(s.sinCone))) - 0.01 * rng.nextDouble();
+      const double angle = 0.5 * kPi - coneAngle(s.sinCone) - 0.01 * rng.nextDouble();
       if (angle <= 0.0) continue;
       const Vec3 axis = vec(s.axis).normalized();
-      const Vec3 t = safeNormalized(axis.cross(uniformDirection(rng)));
-      const Vec3 d = (r % 2 ? 1.0 : -1.0) * (std::cos(angle) * axis + std::sin(angle) * t);
+      const Vec3 d = tilted(axis, sideways(axis, rng), angle, r % 2 ? 1.0 : -1.0);
       ASSERT_GT(d.dot(vec(s.axis)) * d.dot(vec(s.axis)), double(s.sinCone) * s.sinCone);
       ++certified;
       double lo = kInfinity, hi = -kInfinity;
@@ -206,11 +219,9 @@ TEST(BezierSubPatch, ParentConeCertifiesTheParentRegion) {
     const BezierTriangle& piece = pieces[s.piece];
     const Vec3 axis = vec(s.parentAxis).normalized();
     for (int r = 0; r < 4; ++r) {
-      const double angle =
-          0.5 * kPi - std::asin(std::min(1.0, double(s.parentSinCone))) - 0.01 * rng.nextDouble();
+      const double angle = 0.5 * kPi - coneAngle(s.parentSinCone) - 0.01 * rng.nextDouble();
       if (angle <= 0.0) continue;
-      const Vec3 t = safeNormalized(axis.cross(uniformDirection(rng)));
-      const Vec3 d = (r % 2 ? 1.0 : -1.0) * (std::cos(angle) * axis + std::sin(angle) * t);
+      const Vec3 d = tilted(axis, sideways(axis, rng), angle, r % 2 ? 1.0 : -1.0);
       ++certified;
       double lo = kInfinity, hi = -kInfinity;
       for (int i = 0; i <= kSteps; ++i)
@@ -255,10 +266,8 @@ void expectWindingTellsWhetherALineMeetsTheRegion(const std::vector<BezierTriang
       }
       const Vec2 uv = pieceUV(s, a, b);
       const Vec3 target = piece.position(uv.x(), uv.y());
-      const double cone = std::asin(std::min(1.0, double(s.sinCone)));
-      const double tilt = (0.5 * kPi - cone) * 0.99 * rng.nextDouble();
-      const Vec3 side = safeNormalized(axis.cross(uniformDirection(rng)));
-      const Vec3 d = (r % 2 ? 1.0 : -1.0) * (std::cos(tilt) * axis + std::sin(tilt) * side);
+      const double tilt = (0.5 * kPi - coneAngle(s.sinCone)) * 0.99 * rng.nextDouble();
+      const Vec3 d = tilted(axis, sideways(axis, rng), tilt, r % 2 ? 1.0 : -1.0);
       if (d.dot(vec(s.axis)) * d.dot(vec(s.axis)) <= double(s.sinCone) * s.sinCone) continue;
       const double size = piece.bounds.diagonal().norm();
       const Vec3 o = target - 2.0 * size * d;
@@ -347,11 +356,10 @@ TEST(BezierSubPatch, RaysPastARegionsEdgeMeetOnlyTheRegionHoldingThem) {
       if (uv.x() < 0.0 || uv.y() < 0.0 || uv.x() + uv.y() > 1.0) continue;  // off the piece
       const Vec3 target = piece.position(uv.x(), uv.y());
       // Within 60° of the cone's axis, well inside the directions it certifies.
-      const Vec3 side = safeNormalized(axis.cross(uniformDirection(rng)));
+      const Vec3 side = sideways(axis, rng);
       const double tilt =
-          std::asin(std::min(1.0, double(s.sinCone))) +
-          (kPi / 3.0 - std::asin(std::min(1.0, double(s.sinCone)))) * rng.nextDouble();
-      const Vec3 d = (r / 2 ? 1.0 : -1.0) * (std::cos(tilt) * axis + std::sin(tilt) * side);
+          coneAngle(s.sinCone) + (kPi / 3.0 - coneAngle(s.sinCone)) * rng.nextDouble();
+      const Vec3 d = tilted(axis, side, tilt, r / 2 ? 1.0 : -1.0);
       if (d.dot(vec(s.axis)) * d.dot(vec(s.axis)) <= 1.01 * double(s.sinCone) * s.sinCone) continue;
       const double size = piece.bounds.diagonal().norm();
       const Vec3 o = target - size * d;
