@@ -24,6 +24,7 @@
 #include "quadtri/io/atomic_stream.h"
 #include "quadtri/io/memory_limit.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/math/parallel_invoke.h"
 #include "quadtri/mesh/mesh_reader.h"
@@ -70,7 +71,7 @@ std::vector<uint32_t> firstEqual(const std::vector<std::array<T, 3>>& points) {
   size_t capacity = 16;
   while (capacity < 2 * n) capacity *= 2;
   const size_t mask = capacity - 1;
-  std::vector<uint32_t> slots(capacity, ~0u), first(n);
+  std::vector<uint32_t> slots = largeVector(capacity, ~0u), first = largeVector<uint32_t>(n);
   const auto hash = [](const std::array<T, 3>& p) {
     uint64_t h = 0x9e3779b97f4a7c15ull;
     for (const T c : p) {
@@ -163,8 +164,9 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
   const std::vector<size_t> normalBase =
       bases(name, parts, [&](const Part& p) { return allHaveNormals ? p.normalCount : 0; });
   // Positions as Assimp holds them (floats), normals as the mesh keeps them (unit doubles).
-  std::vector<std::array<float, 3>> pointKeys(pointBase.back());
-  std::vector<std::array<double, 3>> normalKeys(normalBase.back());
+  std::vector<std::array<float, 3>> pointKeys = largeVector<std::array<float, 3>>(pointBase.back());
+  std::vector<std::array<double, 3>> normalKeys =
+      largeVector<std::array<double, 3>>(normalBase.back());
   std::vector<char> normalOk(normalBase.back(), 0);
   for (size_t m = 0; m < parts.size(); ++m) {
     const Part& part = parts[m];
@@ -193,9 +195,10 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
   const std::vector<uint32_t> firstPoint = firstEqual(pointKeys);
   const std::vector<uint32_t> firstNormal = firstEqual(normalKeys);
   TriangleMesh mesh;
-  std::vector<uint32_t> pos(base.back()), nrm(allHaveNormals ? base.back() : 0);
+  std::vector<uint32_t> pos = largeVector<uint32_t>(base.back()),
+                        nrm = largeVector<uint32_t>(allHaveNormals ? base.back() : 0);
   {
-    std::vector<uint32_t> idOfRow(pointBase.back(), ~0u);
+    std::vector<uint32_t> idOfRow = largeVector(pointBase.back(), ~0u);
     for (size_t m = 0; m < parts.size(); ++m)
       for (size_t v = 0; v < parts[m].vertexCount; ++v) {
         const size_t row = pointBase[m] + parts[m].pointRow(v);
@@ -209,11 +212,11 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
       }
   }
   std::vector<std::array<float, 3>>().swap(pointKeys);
-  std::vector<uint32_t> normalIdOfRow(normalBase.back(), ~0u);
+  std::vector<uint32_t> normalIdOfRow = largeVector(normalBase.back(), ~0u);
   size_t triangles = 0;
   for (size_t m = 0; m < parts.size(); ++m) triangles += parts[m].faceCount();
-  mesh.triangles.reserve(triangles);
-  if (allHaveNormals) mesh.normalIndices.reserve(triangles);
+  reserveLarge(mesh.triangles, triangles);
+  if (allHaveNormals) reserveLarge(mesh.normalIndices, triangles);
   for (size_t m = 0; m < parts.size(); ++m) {
     const Part& part = parts[m];
     // Normals are numbered mesh by mesh: the new ones of this mesh's vertices, then the face

@@ -16,6 +16,7 @@
 #include "mesh_check.h"
 #include "quadtri/io/memory_limit.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/large_array.h"
 
 namespace quadtri {
 namespace mesh_check {
@@ -343,7 +344,8 @@ std::string readMeshFile(const std::filesystem::path& path) {
   if (ec) fail("{}: cannot read the file's size ({})", name, ec.message());
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("{}: cannot open file", name);
-  std::string bytes(size_t(fileBytes), '\0');
+  std::string bytes;
+  resizeLarge(bytes, size_t(fileBytes));
   in.read(bytes.data(), std::streamsize(bytes.size()));
   if (uint64_t(in.gcount()) != fileBytes)
     fail("{}: cannot read the file ({} of its {} bytes read)", name, in.gcount(), fileBytes);

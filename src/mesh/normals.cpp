@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/large_array.h"
 #include "quadtri/mesh/topology.h"
 
 namespace quadtri {
@@ -47,8 +48,8 @@ void checkCreaseAngle(double degrees) {
 }
 
 void computeVertexNormals(TriangleMesh& mesh, NormalSource source) {
-  std::vector<Vec3> sum(mesh.positions.size(), Vec3::Zero());
-  std::vector<Vec3> firstFace(mesh.positions.size(), Vec3::Zero());
+  std::vector<Vec3> sum = largeVector<Vec3>(mesh.positions.size(), Vec3::Zero());
+  std::vector<Vec3> firstFace = largeVector<Vec3>(mesh.positions.size(), Vec3::Zero());
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const Vec3 cross = mesh.faceCross(t);
     if (!(cross.norm() > 0.0)) continue;  // zero-area faces carry no direction
@@ -60,7 +61,7 @@ void computeVertexNormals(TriangleMesh& mesh, NormalSource source) {
       if (firstFace[v].isZero()) firstFace[v] = n;
     }
   }
-  mesh.normals.resize(mesh.positions.size());
+  resizeLarge(mesh.normals, mesh.positions.size());
   for (size_t v = 0; v < sum.size(); ++v)
     mesh.normals[v] = safeNormalized(sum[v], safeNormalized(firstFace[v]));
   mesh.normalIndices = mesh.triangles;

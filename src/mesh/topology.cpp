@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 
 namespace quadtri {
@@ -24,7 +25,8 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
     const uint32_t a = tri[k], b = tri[(k + 1) % 3];
     return a < b ? std::pair(a, b) : std::pair(b, a);
   };
-  std::vector<uint32_t> start(vertices + 1, 0);
+  std::vector<uint32_t> start;
+  assignLarge(start, vertices + 1, 0u);
   for (size_t h = 0; h < halves; ++h) {
     const auto [a, b] = ends(h);
     if (b >= vertices)
@@ -34,9 +36,12 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
   }
   for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
   // entry = upper << 32 | h: sorting a bucket's entries sorts it by (upper, h).
-  std::vector<uint64_t> entries(halves);
+  std::vector<uint64_t> entries;
+  resizeLarge(entries, halves);
   {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    std::vector<uint32_t> fill;
+    reserveLarge(fill, vertices);
+    fill.assign(start.begin(), start.end() - 1);
     for (size_t h = 0; h < halves; ++h) {
       const auto [a, b] = ends(h);
       entries[fill[a]++] = (uint64_t(b) << 32) | h;
@@ -46,7 +51,8 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
   const auto halfOf = [](uint64_t entry) { return uint32_t(entry); };
   // Each bucket's edges: runs of one upper. groupSize[h] is the number of sides of the edge
   // whose least half-edge is h, 0 for every other h. Buckets are independent.
-  std::vector<uint32_t> groupSize(halves, 0);
+  std::vector<uint32_t> groupSize;
+  assignLarge(groupSize, halves, 0u);
   const auto forEachEdge = [&](size_t v, const auto& f) {
     const uint64_t* first = entries.data() + start[v];
     const uint64_t* last = entries.data() + start[v + 1];
@@ -68,18 +74,19 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
                    });
   // Edges are numbered in the order of their least half-edge; offset[e] is where edge e's
   // sides begin in sides_.
-  std::vector<uint32_t> edgeId(halves, 0);
+  std::vector<uint32_t> edgeId;
+  assignLarge(edgeId, halves, 0u);
   std::vector<size_t> offset(1, 0);
-  offset.reserve(halves / 2 + 2);
+  reserveLarge(offset, halves / 2 + 2);
   for (size_t h = 0; h < halves; ++h)
     if (groupSize[h] > 0) {
       edgeId[h] = uint32_t(offset.size() - 1);
       offset.push_back(offset.back() + groupSize[h]);
     }
   const size_t edgeCount = offset.size() - 1;
-  edges.resize(edgeCount);
-  sides_.resize(halves);
-  edgeOf.resize(triangles);
+  resizeLarge(edges, edgeCount);
+  resizeLarge(sides_, halves);
+  resizeLarge(edgeOf, triangles);
   parallelForRange(tbb::blocked_range<size_t>(0, vertices, 4096),
                    [&](const tbb::blocked_range<size_t>& range) {
                      for (size_t v = range.begin(); v != range.end(); ++v)

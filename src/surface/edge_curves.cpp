@@ -1,5 +1,6 @@
 #include "quadtri/surface/edge_curves.h"
 
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/least_squares.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
@@ -117,7 +118,7 @@ std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
                                                    const MeshTopology& topo,
                                                    std::vector<uint8_t>* gaveUpPatches) {
   const EdgeEnds ends = edgeEnds(mesh, topo);
-  std::vector<std::array<Vec3, 3>> out(mesh.triangleCount());
+  std::vector<std::array<Vec3, 3>> out = largeVector<std::array<Vec3, 3>>(mesh.triangleCount());
   std::vector<uint8_t> gaveUpEdges(gaveUpPatches ? topo.edges.size() : 0, 0);
   // Each edge writes only its own sides' slots, so edges are independent and the result does
   // not depend on the thread count.

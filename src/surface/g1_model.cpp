@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/local_patches.h"
@@ -141,7 +142,7 @@ G1PieceCoords g1PieceCoords(double u, double v) {
 G1Model::G1Model(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  pieces_.resize(3 * m.triangleCount());
+  resizeLarge(pieces_, 3 * m.triangleCount());
   std::vector<uint8_t> fallbacks(m.triangleCount(), 0);
   parallelForRange(tbb::blocked_range<size_t>(0, m.triangleCount(), 1024),
                    [&](const tbb::blocked_range<size_t>& range) {

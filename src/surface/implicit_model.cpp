@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/implicit_fit.h"
 #include "quadtri/surface/local_patches.h"
@@ -45,9 +46,9 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
   const auto controlPoints = edgeControlPoints(m, &fallbacks);
   setFallbacks(std::move(fallbacks));
   const size_t n = m.triangleCount();
-  parametric_.resize(n);
-  parametricOrientation_.resize(n);
-  patches_.resize(n);
+  resizeLarge(parametric_, n);
+  resizeLarge(parametricOrientation_, n);
+  resizeLarge(patches_, n);
   parallelFor(size_t(0), n, [&](size_t t) {
     const QuadraticPatch fp = quadraticPatch(m, controlPoints, t);
     const double orient = patchOrientation(m, t);

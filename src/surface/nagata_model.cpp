@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/edge_curves.h"
@@ -46,8 +47,8 @@ Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const
 NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  curvatures_.resize(m.triangleCount());
-  patches_.resize(m.triangleCount());
+  resizeLarge(curvatures_, m.triangleCount());
+  resizeLarge(patches_, m.triangleCount());
   std::vector<uint8_t> gaveUp(m.triangleCount(), 0);
   // Each triangle writes only its own slots: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/local_patches.h"
@@ -14,7 +15,7 @@ PhongModel::PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha)
   if (!std::isfinite(alpha)) fail("phong: shape factor α = {} is not finite", alpha);
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  patches_.resize(m.triangleCount());
+  resizeLarge(patches_, m.triangleCount());
   // Each triangle writes only its own patch: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);

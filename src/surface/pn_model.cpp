@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/local_patches.h"
@@ -116,7 +117,7 @@ Vec3 PnPatch::normalField(double u, double v) const {
 PnModel::PnModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  patches_.resize(m.triangleCount());
+  resizeLarge(patches_, m.triangleCount());
   // Each triangle writes only its own patch: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);

@@ -3,6 +3,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/mesh/winding.h"
@@ -289,9 +290,9 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   parallelFor(size_t(0), edges.size(), [&](size_t i) { edges[i] = sharedEdge(m, topo.edges[i]); });
   const std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m, topo);
 
-  patches_.resize(m.triangleCount());
-  frames_.resize(m.triangleCount());
-  std::vector<QuadricCoeffs> pencils(m.triangleCount());
+  resizeLarge(patches_, m.triangleCount());
+  resizeLarge(frames_, m.triangleCount());
+  std::vector<QuadricCoeffs> pencils = largeVector<QuadricCoeffs>(m.triangleCount());
   std::vector<uint8_t> fallbacks(m.triangleCount(), 0);
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     CornerData data;
@@ -338,7 +339,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   std::vector<uint32_t> part(m.triangleCount(), 0);
   for (size_t p = 0; p < windings.parts.size(); ++p)
     for (uint32_t t : windings.parts[p]) part[t] = uint32_t(p);
-  std::vector<ConvexCell> cells(m.triangleCount());
+  std::vector<ConvexCell> cells = largeVector<ConvexCell>(m.triangleCount());
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
     QuadricPatch& patch = patches_[t];
@@ -358,11 +359,11 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     patch.planeCount = 3;
   });
   // The fits (moved along their pencils), kept for the rounds below.
-  std::vector<QuadricCoeffs> fitted(m.triangleCount());
+  std::vector<QuadricCoeffs> fitted = largeVector<QuadricCoeffs>(m.triangleCount());
   for (size_t t = 0; t < m.triangleCount(); ++t) fitted[t] = patches_[t].q;
   std::vector<double> reach(m.triangleCount(), kInfinity);
   std::vector<char> redo(m.triangleCount(), 1);
-  std::vector<ConvexCell> flatCores, cores(m.triangleCount());
+  std::vector<ConvexCell> flatCores, cores = largeVector<ConvexCell>(m.triangleCount());
   // Cells of triangles that share no vertex must not overlap (thin parts, such as a plate
   // thinner than its triangles: a sheet of one side would otherwise reach through the other's):
   // each round halves the reach of the cells that do, and chooses their patches again.
@@ -371,7 +372,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       if (redo[t]) choosePatch(t, fitted[t], pencils[t], reach[t], cells[t]);
     });
     if (flatCores.empty()) {
-      flatCores.resize(m.triangleCount());
+      resizeLarge(flatCores, m.triangleCount());
       parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
         if (cells[t].empty()) return;
         const QuadricPatch& patch = patches_[t];
