@@ -1,5 +1,3 @@
-#include "quadtri/math/large_array.h"
-
 #include <gtest/gtest.h>
 
 #include <array>
@@ -8,6 +6,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "quadtri/math/large_array.h"
 
 namespace quadtri {
 namespace {
