@@ -9,6 +9,7 @@
 
 #include "quadtri/math/error.h"
 #include "quadtri/math/float_round.h"
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/bezier_intersect.h"
 
@@ -324,6 +325,9 @@ struct Accel::Impl {
   std::vector<std::unique_ptr<BezierGeometry>> bezierGeometries;
   // By geometry id: the Bézier geometry whose flat pieces that native geometry holds.
   std::vector<const BezierGeometry*> flatOwner;
+  // The triangle geometries' vertex and index buffers (Embree reads them in place).
+  std::vector<std::vector<float>> vertexBuffers;
+  std::vector<std::vector<uint32_t>> indexBuffers;
 
   // Throws this thread's pending Embree error, naming the step.
   static void check(const char* what) {
@@ -376,20 +380,15 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
   if (impl_->committed) fail("adding triangles: the acceleration structure is already committed");
   if (mesh.triangles.empty())
     fail("triangles for the acceleration structure: the mesh has no triangles");
+  // The buffers are the Accel's, shared with Embree: large ones ask for huge pages before they
+  // are filled (math/large_array.h). One float of padding: Embree reads the last vertex with a
+  // 16-byte load.
+  std::vector<float> vertexBuffer = largeVector<float>(3 * mesh.positions.size() + 1);
+  std::vector<uint32_t> indexBuffer = largeVector<uint32_t>(3 * mesh.triangles.size());
+  float* vertices = vertexBuffer.data();
+  uint32_t* indices = indexBuffer.data();
   RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   impl_->check("creating a triangle geometry");
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                               mesh.positions.size()));
-  auto* indices = static_cast<uint32_t*>(
-      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                              3 * sizeof(uint32_t), mesh.triangles.size()));
-  if (!vertices || !indices) {
-    rtcReleaseGeometry(geom);
-    impl_->check("allocating triangle buffers");
-    fail("allocating triangle buffers failed ({} vertices, {} triangles)", mesh.positions.size(),
-         mesh.triangles.size());
-  }
   // The entry check for any caller's mesh, made while copying (no second pass over a mesh the
   // loader has validated already): what Embree reads must be finite as float and in range.
   constexpr const char* kWhat = "triangles for the acceleration structure";
@@ -413,10 +412,16 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
       }
       indices[3 * t + c] = v;
     }
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0,
+                             3 * sizeof(float), mesh.positions.size());
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0,
+                             3 * sizeof(uint32_t), mesh.triangles.size());
   rtcCommitGeometry(geom);
   const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
   rtcReleaseGeometry(geom);
   impl_->check("attaching a triangle geometry");
+  impl_->vertexBuffers.push_back(std::move(vertexBuffer));
+  impl_->indexBuffers.push_back(std::move(indexBuffer));
   impl_->bytes += (mesh.positions.size() + mesh.triangles.size()) * 3 * sizeof(float);
   return id;
 }

@@ -8,6 +8,7 @@
 
 #include "bezier_net.h"
 #include "quadtri/math/float_round.h"
+#include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/bezier_intersect.h"
 
@@ -491,10 +492,10 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
   // again. Each piece in its own slots and every sum in piece order, so the result does not
   // depend on the threads.
   const size_t even = std::clamp<size_t>(budget / std::max<size_t>(n, 1), 1, kMaxRegions);
-  std::vector<size_t> share(n, even);
-  std::vector<uint16_t> counts(n, 0);
-  std::vector<uint8_t> starved(n, 0);
-  std::vector<double> estimate(n, 0.0);
+  std::vector<size_t> share = largeVector(n, even);
+  std::vector<uint16_t> counts = largeVector<uint16_t>(n, 0);
+  std::vector<uint8_t> starved = largeVector<uint8_t>(n, 0);
+  std::vector<double> estimate = largeVector(n, 0.0);
   // Splits pieces which[i] into slots from at[i] on.
   const auto split = [&](const std::vector<size_t>& which, const std::vector<size_t>& at,
                          std::vector<BezierSubPatch>& slots) {
@@ -511,9 +512,9 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
                        }
                      });
   };
-  std::vector<size_t> all(n), first(n);
+  std::vector<size_t> all = largeVector<size_t>(n), first = largeVector<size_t>(n);
   for (size_t p = 0; p < n; ++p) all[p] = p, first[p] = p * even;
-  std::vector<BezierSubPatch> slots(n * even);
+  std::vector<BezierSubPatch> slots = largeVector<BezierSubPatch>(n * even);
   split(all, first, slots);
   size_t used = 0;
   double weight = 0.0;
@@ -542,7 +543,7 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
       next += share[p];
     }
     again.swap(grown);
-    againSlots.resize(next);
+    resizeLarge(againSlots, next);
     split(again, againFirst, againSlots);
   } else {
     again.clear();
@@ -550,7 +551,7 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
   std::vector<BezierSubPatch> out;
   size_t total = 0;
   for (uint16_t c : counts) total += c;
-  out.reserve(total);
+  reserveLarge(out, total);
   size_t nextAgain = 0;
   for (size_t p = 0; p < n; ++p) {
     const bool second = nextAgain < again.size() && again[nextAgain] == p;

@@ -1,8 +1,10 @@
 #include "quadtri/surface/tessellate.h"
 
+#include <algorithm>
 #include <unordered_map>
 
 #include "quadtri/math/error.h"
+#include "quadtri/math/large_array.h"
 #include "quadtri/mesh/topology.h"
 
 namespace quadtri {
@@ -150,16 +152,31 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellat
     }
   }
   TriangleMesh out;
-  out.positions.reserve(mesh.triangleCount() * pattern.uv.size() / (weld ? 2 : 1));
-  std::vector<uint32_t> cornerVertex(weld ? mesh.positions.size() : 0, ~0u);
+  // Points: each triangle's own (all of them, or its interior ones when welded) and, welded,
+  // one per vertex and `steps - 1` per edge (crease normals go to extraNormals).
+  size_t perTriangle = pattern.uv.size();
+  if (weld)
+    perTriangle =
+        size_t(std::count_if(pattern.sites.begin(), pattern.sites.end(), [](const PointSite& site) {
+          return site.kind == PointSite::Kind::Interior;
+        }));
+  const size_t points = mesh.triangleCount() * perTriangle +
+                        (weld ? mesh.positions.size() + topo.edges.size() * size_t(steps - 1) : 0);
+  const size_t triangles = mesh.triangleCount() * pattern.triangles.size();
+  reserveLarge(out.positions, points);
+  reserveLarge(out.normals, points);
+  reserveLarge(out.triangles, triangles);
+  std::vector<uint32_t> cornerVertex = largeVector(weld ? mesh.positions.size() : 0, ~0u);
   // Welded edge points: per mesh edge, `steps - 1` interior points from endpoint a to b.
-  std::vector<uint32_t> edgeVertex(weld ? topo.edges.size() * size_t(steps - 1) : 0, ~0u);
+  std::vector<uint32_t> edgeVertex =
+      largeVector(weld ? topo.edges.size() * size_t(steps - 1) : 0, ~0u);
   std::vector<uint32_t> local(pattern.uv.size()), localNormal(pattern.uv.size());
   // Normals of a side at a crease point another side created; their indices are marked with
   // kExtra until the per-point normals before them are all known.
   constexpr uint32_t kExtra = 1u << 31;
   std::vector<Vec3> extraNormals;
   std::vector<Tri> normalIndices;
+  reserveLarge(normalIndices, triangles);
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
     for (size_t i = 0; i < pattern.uv.size(); ++i) {
       const PointSite& s = pattern.sites[i];
@@ -204,6 +221,7 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellat
     }
   }
   if (extraNormals.empty()) {
+    reserveLarge(out.normalIndices, out.triangles.size());
     out.normalIndices = out.triangles;
   } else {
     const uint32_t base = uint32_t(out.normals.size());
