@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
+#include <mutex>
+#include <utility>
 
 #include "bezier_net.h"
 #include "quadtri/math/float_round.h"
@@ -489,49 +492,82 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
   const size_t n = pieces.size();
   // First an even share of the budget per piece; then what the pieces that needed less left
   // over goes to those that needed more, in proportion to their estimates, and they are split
-  // again. Each piece in its own slots and every sum in piece order, so the result does not
-  // depend on the threads.
+  // again. Regions are gathered piece after piece and every sum is taken in piece order, so the
+  // result does not depend on the threads.
   const size_t even = std::clamp<size_t>(budget / std::max<size_t>(n, 1), 1, kMaxRegions);
   std::vector<size_t> share = largeVector(n, even);
   std::vector<uint16_t> counts = largeVector<uint16_t>(n, 0);
   std::vector<uint8_t> starved = largeVector<uint8_t>(n, 0);
   std::vector<double> estimate = largeVector(n, 0.0);
-  // Splits pieces which[i] into slots from at[i] on.
-  const auto split = [&](const std::vector<size_t>& which, const std::vector<size_t>& at,
-                         std::vector<BezierSubPatch>& slots) {
-    parallelForRange(tbb::blocked_range<size_t>(0, which.size(), 64),
-                     [&](const tbb::blocked_range<size_t>& range) {
-                       std::vector<Region> items;
-                       std::vector<size_t> heap;
-                       for (size_t i = range.begin(); i != range.end(); ++i) {
-                         const size_t p = which[i];
-                         starved[p] = splitPiece(pieces[p], uint32_t(p), share[p], sinMax, items,
-                                                 heap, estimate[p]);
-                         for (size_t k = 0; k < items.size(); ++k) slots[at[i] + k] = items[k].sub;
-                         counts[p] = uint16_t(items.size());
-                       }
-                     });
+  // Splits pieces which[0], which[1], ... and returns their regions, piece after piece. A block
+  // of pieces appends its regions to a buffer that no other block is using, so the memory held
+  // is what the pieces made, not their shares, and it is reused from block to block.
+  const auto split = [&](const std::vector<size_t>& which) {
+    struct Chunk {
+      size_t first, buffer, offset, count;  // which[first...]'s regions in buffers[buffer]
+    };
+    std::mutex mutex;
+    std::deque<std::vector<BezierSubPatch>> buffers;  // stable while others are added
+    std::vector<size_t> idle;
+    std::vector<Chunk> chunks;
+    parallelForRange(
+        tbb::blocked_range<size_t>(0, which.size(), 64),
+        [&](const tbb::blocked_range<size_t>& range) {
+          size_t b;
+          {
+            const std::lock_guard<std::mutex> lock(mutex);
+            if (idle.empty()) {
+              b = buffers.size();
+              buffers.emplace_back();
+            } else {
+              b = idle.back();
+              idle.pop_back();
+            }
+          }
+          std::vector<BezierSubPatch>& buffer = buffers[b];
+          const size_t offset = buffer.size();
+          std::vector<Region> items;
+          std::vector<size_t> heap;
+          for (size_t i = range.begin(); i != range.end(); ++i) {
+            const size_t p = which[i];
+            starved[p] =
+                splitPiece(pieces[p], uint32_t(p), share[p], sinMax, items, heap, estimate[p]);
+            if (buffer.size() + items.size() > buffer.capacity())
+              reserveLarge(buffer, std::max(2 * buffer.capacity(), buffer.size() + items.size()));
+            for (const Region& item : items) buffer.push_back(item.sub);
+            counts[p] = uint16_t(items.size());
+          }
+          const std::lock_guard<std::mutex> lock(mutex);
+          chunks.push_back({range.begin(), b, offset, buffer.size() - offset});
+          idle.push_back(b);
+        });
+    std::sort(chunks.begin(), chunks.end(),
+              [](const Chunk& a, const Chunk& b) { return a.first < b.first; });
+    size_t total = 0;
+    for (const Chunk& c : chunks) total += c.count;
+    std::vector<BezierSubPatch> out;
+    reserveLarge(out, total);
+    for (const Chunk& c : chunks) {
+      const auto begin = buffers[c.buffer].begin() + std::ptrdiff_t(c.offset);
+      out.insert(out.end(), begin, begin + std::ptrdiff_t(c.count));
+    }
+    return out;
   };
-  std::vector<size_t> all = largeVector<size_t>(n), first = largeVector<size_t>(n);
-  for (size_t p = 0; p < n; ++p) all[p] = p, first[p] = p * even;
-  std::vector<BezierSubPatch> slots = largeVector<BezierSubPatch>(n * even);
-  split(all, first, slots);
-  size_t used = 0;
+  std::vector<size_t> all = largeVector<size_t>(n);
+  for (size_t p = 0; p < n; ++p) all[p] = p;
+  std::vector<BezierSubPatch> firstRegions = split(all);
+  std::vector<size_t>().swap(all);
+  size_t used = firstRegions.size();
   double weight = 0.0;
   std::vector<size_t> again;
-  for (size_t p = 0; p < n; ++p) {
-    used += counts[p];
+  for (size_t p = 0; p < n; ++p)
     if (starved[p]) again.push_back(p), weight += estimate[p];
-  }
   // Only the pieces whose share grows by half at least are split again: each is split from
   // scratch, and a region or two more is not worth that (on the thesis' torus a re-split for
   // every piece given more doubled the build for 1% of the render).
-  std::vector<size_t> againFirst;
-  std::vector<BezierSubPatch> againSlots;
   if (used < budget && weight > 0.0) {
     const double spare = double(budget - used);
     std::vector<size_t> grown;
-    size_t next = 0;
     for (const size_t p : again) {
       share[p] = std::min(kMaxRegions, even + size_t(spare * estimate[p] / weight));
       if (share[p] < even + std::max<size_t>(1, even / 2)) {
@@ -539,25 +575,31 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
         continue;
       }
       grown.push_back(p);
-      againFirst.push_back(next);
-      next += share[p];
     }
     again.swap(grown);
-    resizeLarge(againSlots, next);
-    split(again, againFirst, againSlots);
   } else {
     again.clear();
   }
-  std::vector<BezierSubPatch> out;
+  if (again.empty()) return firstRegions;
+  // Each piece split again replaces its first regions by its second ones.
+  std::vector<uint16_t> firstCounts(counts);
+  const std::vector<BezierSubPatch> againRegions = split(again);
   size_t total = 0;
   for (uint16_t c : counts) total += c;
+  std::vector<BezierSubPatch> out;
   reserveLarge(out, total);
-  size_t nextAgain = 0;
+  size_t nextAgain = 0, fromFirst = 0, fromAgain = 0;
   for (size_t p = 0; p < n; ++p) {
-    const bool second = nextAgain < again.size() && again[nextAgain] == p;
-    const auto begin = second ? againSlots.begin() + std::ptrdiff_t(againFirst[nextAgain++])
-                              : slots.begin() + std::ptrdiff_t(first[p]);
-    out.insert(out.end(), begin, begin + counts[p]);
+    if (nextAgain < again.size() && again[nextAgain] == p) {
+      ++nextAgain;
+      const auto begin = againRegions.begin() + std::ptrdiff_t(fromAgain);
+      out.insert(out.end(), begin, begin + counts[p]);
+      fromAgain += counts[p];
+    } else {
+      const auto begin = firstRegions.begin() + std::ptrdiff_t(fromFirst);
+      out.insert(out.end(), begin, begin + counts[p]);
+    }
+    fromFirst += firstCounts[p];
   }
   return out;
 }

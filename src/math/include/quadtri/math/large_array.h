@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <vector>
 
 #if defined(__linux__)
@@ -43,12 +44,20 @@ inline void adviseHugePages(const void* data, size_t bytes) noexcept {
 }
 
 /// v.reserve(n) for a vector-like container; a new allocation of a large array asks for huge
-/// pages before anything is written past the elements it already held.
+/// pages before anything is written to it (the elements v held are then moved there).
 template <class Vector>
 void reserveLarge(Vector& v, size_t n) {
   if (n <= v.capacity()) return;
-  v.reserve(n);
-  adviseHugePages(v.data() + v.size(), (n - v.size()) * sizeof(typename Vector::value_type));
+  if (v.empty()) {
+    v.reserve(n);
+    adviseHugePages(v.data(), n * sizeof(typename Vector::value_type));
+    return;
+  }
+  Vector fresh;
+  fresh.reserve(n);
+  adviseHugePages(fresh.data(), n * sizeof(typename Vector::value_type));
+  fresh.insert(fresh.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+  v.swap(fresh);
 }
 
 /// v.resize(n), the new storage advised as reserveLarge does.
