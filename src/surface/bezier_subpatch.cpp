@@ -485,9 +485,13 @@ bool splitPiece(const BezierTriangle& piece, uint32_t p, size_t share, double si
 
 }  // namespace
 
+size_t defaultSubPatchBudget(size_t pieces) {
+  return std::max<size_t>(65536, std::min<size_t>(8 * pieces, size_t(1) << 22));
+}
+
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
                                              double coneDegrees, size_t budget) {
-  if (budget == 0) budget = std::max<size_t>(65536, 8 * pieces.size());
+  if (budget == 0) budget = defaultSubPatchBudget(pieces.size());
   const double sinMax = std::sin(coneDegrees * kPi / 180.0);
   const size_t n = pieces.size();
   // First an even share of the budget per piece; then what the pieces that needed less left

@@ -467,5 +467,13 @@ TEST(BezierSubPatch, HitsAreTheWholePieceHits) {
   EXPECT_GE(hits, compared);
 }
 
+TEST(BezierSubPatch, DefaultBudgetIsEightPerPieceBetweenItsFloorAndItsCap) {
+  EXPECT_EQ(defaultSubPatchBudget(0), 65536u);
+  EXPECT_EQ(defaultSubPatchBudget(8192), 65536u);
+  EXPECT_EQ(defaultSubPatchBudget(17412), 8u * 17412u);  // the cow's pieces
+  EXPECT_EQ(defaultSubPatchBudget(524288), size_t(1) << 22);
+  EXPECT_EQ(defaultSubPatchBudget(3000000), size_t(1) << 22);  // a 1,000,000-triangle mesh
+}
+
 }  // namespace
 }  // namespace quadtri
