@@ -2,9 +2,11 @@
 // boxes, prisms and derivative cones hold what they claim (checked by dense sampling), and their
 // hits are the whole-piece intersector's.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "fixtures/bezier_pieces.h"
 #include "quadtri/geometry/rng.h"
@@ -121,8 +123,11 @@ TEST(BezierSubPatch, RegionsTileEveryPiece) {
   const int most = *std::max_element(fewCount.begin(), fewCount.end());
   EXPECT_LT(least, 4);
   EXPECT_GT(most, 4);
-  // The result is the same whatever the threads did.
-  const std::vector<BezierSubPatch> again = bezierSubPatches(pieces);
+  // The result is the same whatever the threads did, and on one thread.
+  const std::vector<BezierSubPatch> again = [&] {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    return bezierSubPatches(pieces);
+  }();
   ASSERT_EQ(again.size(), subs.size());
   for (size_t i = 0; i < subs.size(); ++i) {
     EXPECT_EQ(again[i].piece, subs[i].piece);
@@ -465,6 +470,30 @@ TEST(BezierSubPatch, HitsAreTheWholePieceHits) {
   EXPECT_GT(compared, 3000);
   EXPECT_GT(againstAll, 800);
   EXPECT_GE(hits, compared);
+}
+
+TEST(BezierSubPatch, RegionsComePieceAfterPieceWhateverTheThreads) {
+  // Enough pieces for many parallel blocks (64 pieces each).
+  std::vector<BezierTriangle> pieces;
+  while (pieces.size() < 1000) {
+    const std::vector<BezierTriangle> more = curvedPieces();
+    pieces.insert(pieces.end(), more.begin(), more.end());
+  }
+  const std::vector<BezierSubPatch> many = bezierSubPatches(pieces);
+  const std::vector<BezierSubPatch> one = [&] {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    return bezierSubPatches(pieces);
+  }();
+  ASSERT_EQ(many.size(), one.size());
+  for (size_t i = 0; i < many.size(); ++i) {
+    ASSERT_EQ(many[i].piece, one[i].piece) << i;
+    if (i > 0) ASSERT_LE(many[i - 1].piece, many[i].piece) << i;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(many[i].cu[c], one[i].cu[c]);
+      EXPECT_EQ(many[i].cv[c], one[i].cv[c]);
+    }
+    EXPECT_EQ(std::memcmp(many[i].lo, one[i].lo, sizeof(many[i].lo)), 0);
+  }
 }
 
 TEST(BezierSubPatch, DefaultBudgetIsEightPerPieceBetweenItsFloorAndItsCap) {
