@@ -487,7 +487,9 @@ TEST(BezierSubPatch, RegionsComePieceAfterPieceWhateverTheThreads) {
   ASSERT_EQ(many.size(), one.size());
   for (size_t i = 0; i < many.size(); ++i) {
     ASSERT_EQ(many[i].piece, one[i].piece) << i;
-    if (i > 0) ASSERT_LE(many[i - 1].piece, many[i].piece) << i;
+    if (i > 0) {
+      ASSERT_LE(many[i - 1].piece, many[i].piece) << i;
+    }
     for (int c = 0; c < 3; ++c) {
       EXPECT_EQ(many[i].cu[c], one[i].cu[c]);
       EXPECT_EQ(many[i].cv[c], one[i].cv[c]);
