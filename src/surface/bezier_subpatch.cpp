@@ -518,6 +518,7 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
         tbb::blocked_range<size_t>(0, which.size(), 64),
         [&](const tbb::blocked_range<size_t>& range) {
           size_t b;
+          std::vector<BezierSubPatch>* held;  // indexed under the lock: others may add buffers
           {
             const std::lock_guard<std::mutex> lock(mutex);
             if (idle.empty()) {
@@ -527,8 +528,9 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
               b = idle.back();
               idle.pop_back();
             }
+            held = &buffers[b];
           }
-          std::vector<BezierSubPatch>& buffer = buffers[b];
+          std::vector<BezierSubPatch>& buffer = *held;
           const size_t offset = buffer.size();
           std::vector<Region> items;
           std::vector<size_t> heap;
