@@ -25,8 +25,7 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
     const uint32_t a = tri[k], b = tri[(k + 1) % 3];
     return a < b ? std::pair(a, b) : std::pair(b, a);
   };
-  std::vector<uint32_t> start;
-  assignLarge(start, vertices + 1, 0u);
+  std::vector<uint32_t> start = largeVector<uint32_t>(vertices + 1, 0);
   for (size_t h = 0; h < halves; ++h) {
     const auto [a, b] = ends(h);
     if (b >= vertices)
@@ -36,8 +35,7 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
   }
   for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
   // entry = upper << 32 | h: sorting a bucket's entries sorts it by (upper, h).
-  std::vector<uint64_t> entries;
-  resizeLarge(entries, halves);
+  std::vector<uint64_t> entries = largeVector<uint64_t>(halves);
   {
     std::vector<uint32_t> fill;
     reserveLarge(fill, vertices);
@@ -51,8 +49,7 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
   const auto halfOf = [](uint64_t entry) { return uint32_t(entry); };
   // Each bucket's edges: runs of one upper. groupSize[h] is the number of sides of the edge
   // whose least half-edge is h, 0 for every other h. Buckets are independent.
-  std::vector<uint32_t> groupSize;
-  assignLarge(groupSize, halves, 0u);
+  std::vector<uint32_t> groupSize = largeVector<uint32_t>(halves, 0);
   const auto forEachEdge = [&](size_t v, const auto& f) {
     const uint64_t* first = entries.data() + start[v];
     const uint64_t* last = entries.data() + start[v + 1];
@@ -74,8 +71,7 @@ MeshTopology::MeshTopology(const TriangleMesh& mesh) {
                    });
   // Edges are numbered in the order of their least half-edge; offset[e] is where edge e's
   // sides begin in sides_.
-  std::vector<uint32_t> edgeId;
-  assignLarge(edgeId, halves, 0u);
+  std::vector<uint32_t> edgeId = largeVector<uint32_t>(halves, 0);
   std::vector<size_t> offset(1, 0);
   reserveLarge(offset, halves / 2 + 2);
   for (size_t h = 0; h < halves; ++h)
