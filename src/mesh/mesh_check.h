@@ -39,6 +39,9 @@ std::vector<std::string_view> words(std::string_view line);
 /// Whether the whole word is a finite decimal number (a leading '+' allowed).
 bool parseFinite(std::string_view word);
 
+/// The path's extension in lower case, with its dot (".obj"); empty when it has none.
+std::string lowerExtension(const std::filesystem::path& path);
+
 /// inspectMeshFile on the file's bytes, already read (readMeshFile): what loadMesh does, so the
 /// file is read once for the checks and the reader. `path` names the file in errors and gives
 /// its format by extension. With offBody false, an OFF file's header alone is checked: its body

@@ -32,12 +32,6 @@
 namespace quadtri {
 namespace {
 
-std::string lowerExtension(const std::filesystem::path& p) {
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 // Assimp's file system, but the mesh file itself is served from the bytes the loader has read
 // (and checked) already, so the file is read once; any other file it opens (an OBJ's mtllib)
 // comes from the disk as before.
@@ -312,7 +306,7 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
   const std::string name = path.string();
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail("{}: no such file", name);
-  const std::string ext = lowerExtension(path);
+  const std::string ext = mesh_check::lowerExtension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")
     fail("{}: unsupported mesh format '{}': expected .obj, .ply, .stl or .off", name, ext);
   // The file is read once: the checks and Assimp both read these bytes.
@@ -406,7 +400,7 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
 }
 
 void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
-  const std::string ext = lowerExtension(path);
+  const std::string ext = mesh_check::lowerExtension(path);
   for (const Vec3& p : mesh.positions)
     if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
   if (ext != ".obj" && ext != ".ply")

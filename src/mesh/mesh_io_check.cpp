@@ -88,17 +88,17 @@ MemoryStream::MemoryStream(std::string_view bytes) : std::istream(nullptr), buff
   rdbuf(&buffer_);
 }
 
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 }  // namespace mesh_check
 
 namespace {
 
 using namespace mesh_check;
-
-std::string lowerExtension(const std::filesystem::path& p) {
-  std::string ext = p.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 // OFF: [ST][C][N]OFF, the vertex and face counts, then one vertex per line and one face
 // "k i1 .. ik" per line (off_reader.cpp reads it). The counts must fit in the file's size;

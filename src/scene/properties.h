@@ -14,6 +14,10 @@
 
 namespace quadtri {
 
+/// The largest sample count a scene may ask for (a sampler's sample_count, an integrator's
+/// per-pixel or per-vertex samples): 2^24, where a float still counts samples exactly.
+constexpr int kMaxSceneSamples = 1 << 24;
+
 /// The XML tag a property was written with.
 enum class PropertyType {
   Float,

@@ -116,8 +116,8 @@ SamplerDesc parseSampler(const XmlElement& element, std::vector<std::string>& no
   SamplerDesc sampler;
   sampler.location = props.location();
   const long long count = props.getInteger("sample_count", 4);
-  if (count < 1 || count > (1 << 24))
-    props.fail("sample_count", "must be in [1, {}], got {}", 1 << 24, count);
+  if (count < 1 || count > kMaxSceneSamples)
+    props.fail("sample_count", "must be in [1, {}], got {}", kMaxSceneSamples, count);
   const long long seed = props.getInteger("seed", 0);
   if (seed < 0 || seed > 0x7fffffff) props.fail("seed", "must be in [0, 2^31), got {}", seed);
   sampler.sampleCount = int(count);

@@ -11,13 +11,6 @@ double planeValue(const Vec4& plane, const Vec3& p) {
   return plane.head<3>().dot(p) + plane[3];
 }
 
-// The symmetric M of q's quadratic part xᵀMx.
-Mat3 quadraticPart(const QuadricCoeffs& q) {
-  Mat3 m;
-  m << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
-  return m;
-}
-
 // Real roots of a s² + b s + c (stable; a linear or constant polynomial gives at most one).
 int quadraticRoots(double a, double b, double c, double roots[2]) {
   const double scale = std::abs(a) + std::abs(b) + std::abs(c);

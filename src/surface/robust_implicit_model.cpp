@@ -451,8 +451,7 @@ void RobustImplicitModel::addBridges(const MeshTopology& topo,
     const Vec3 o = 0.5 * (va + vb);
     const auto conic = [&](const QuadricPatch& p) {
       const QuadricCoeffs& q = p.q;
-      Mat3 M;
-      M << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
+      const Mat3 M = quadraticPart(q);
       const Vec3 g = quadricGradient(q, o);
       Eigen::Matrix<double, 6, 1> c;
       c << u.dot(M * u) * length * length, 2.0 * u.dot(M * w) * length * length,

@@ -199,8 +199,7 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
     for (const Vec3& v : cell.vertices) gmax = std::max(gmax, quadricGradient(q, v).norm());
     {
       // orientation·(2Mx + g)·n <= margin, as a plane m·x + d >= 0.
-      Mat3 M;
-      M << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
+      const Mat3 M = quadraticPart(q);
       const Vec3 slope = -patch.orientation * 2.0 * (M * n);
       const double offset = -patch.orientation * Vec3(q[6], q[7], q[8]).dot(n) + 1e-3 * gmax;
       bool folded = false;

@@ -17,13 +17,6 @@ namespace {
 constexpr double kArcWeight = 1e-2;
 constexpr double kCompatibleDeg = 1e-4;
 
-// The symmetric M of the quadratic part xᵀMx.
-Mat3 quadraticPart(const QuadricCoeffs& q) {
-  Mat3 m;
-  m << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
-  return m;
-}
-
 // Σ a_i b_i in fixed blocks summed in order: the same bits for any thread count.
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
   constexpr size_t kBlock = 16384;

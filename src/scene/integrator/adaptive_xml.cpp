@@ -9,10 +9,6 @@
 
 namespace quadtri {
 
-namespace {
-constexpr int kMaxSamples = 1 << 24;
-}
-
 std::string AdaptiveIntegratorParams::toString() const {
   return fmt::format(" threshold={} min_samples={} max_samples={} path({})", threshold, minSamples,
                      maxSamples, path.toString());
@@ -59,11 +55,11 @@ std::shared_ptr<const IntegratorParams> parseAdaptiveIntegrator(ObjectProperties
   params->threshold = props.getFloat("threshold", 0.05);
   if (!(params->threshold > 0.0)) props.fail("threshold", "must be > 0, got {}", params->threshold);
   // Two samples at least: the stopping test needs a sample variance.
-  params->minSamples = boundedInteger(props, "min_samples", 16, 2, kMaxSamples);
+  params->minSamples = boundedInteger(props, "min_samples", 16, 2, kMaxSceneSamples);
   if (const std::optional<long long> maxSamples = props.getOptionalInteger("max_samples")) {
-    if (*maxSamples < params->minSamples || *maxSamples > kMaxSamples)
+    if (*maxSamples < params->minSamples || *maxSamples > kMaxSceneSamples)
       props.fail("max_samples", "must be in [min_samples = {}, {}], got {}", params->minSamples,
-                 kMaxSamples, *maxSamples);
+                 kMaxSceneSamples, *maxSamples);
     params->maxSamples = int(*maxSamples);
   }
   if (const std::optional<XmlElement> inner = props.takeOptional("integrator")) {

@@ -7,10 +7,6 @@
 
 namespace quadtri {
 
-namespace {
-constexpr int kMaxSamples = 1 << 24;
-}
-
 std::string DirectIntegratorParams::toString() const {
   return fmt::format(" emitter_samples={} bsdf_samples={} hide_emitters={}", emitterSamples,
                      bsdfSamples, hideEmitters);
@@ -23,9 +19,9 @@ std::shared_ptr<const Integrator> DirectIntegratorParams::build(int /*samplesPer
 
 std::shared_ptr<const IntegratorParams> parseDirectIntegrator(ObjectProperties& props) {
   auto params = std::make_shared<DirectIntegratorParams>();
-  const int shading = boundedInteger(props, "shading_samples", 1, 1, kMaxSamples);
-  params->emitterSamples = boundedInteger(props, "emitter_samples", shading, 0, kMaxSamples);
-  params->bsdfSamples = boundedInteger(props, "bsdf_samples", shading, 0, kMaxSamples);
+  const int shading = boundedInteger(props, "shading_samples", 1, 1, kMaxSceneSamples);
+  params->emitterSamples = boundedInteger(props, "emitter_samples", shading, 0, kMaxSceneSamples);
+  params->bsdfSamples = boundedInteger(props, "bsdf_samples", shading, 0, kMaxSceneSamples);
   if (params->emitterSamples == 0 && params->bsdfSamples == 0)
     props.element().fail("integrator 'direct' needs emitter_samples or bsdf_samples > 0");
   params->hideEmitters = props.getBoolean("hide_emitters", false);

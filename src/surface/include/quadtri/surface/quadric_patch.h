@@ -14,6 +14,8 @@ using QuadricCoeffs = std::array<double, 10>;
 
 double evalQuadric(const QuadricCoeffs& q, const Vec3& p);
 Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p);
+/// The symmetric M of q's quadratic part: A x² + ... + F yz = xᵀ M x.
+Mat3 quadraticPart(const QuadricCoeffs& q);
 
 /// A patch of the quadric q = 0 kept where every clip plane's (n·x + d) is >= 0, inside
 /// `bounds`. `orientation` (+1 or -1) turns the gradient into the normal on the side of the
