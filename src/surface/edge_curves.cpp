@@ -157,19 +157,6 @@ std::array<Vec3, 6> QuadraticPatch::coefficients() const {
           v[0] + v[1] - 2.0 * b01};        // c5 (u²)
 }
 
-Vec3 QuadraticPatch::position(double u, double w) const {
-  const double l0 = 1.0 - u - w, l1 = u, l2 = w;
-  return l0 * l0 * v[0] + l1 * l1 * v[1] + l2 * l2 * v[2] + 2.0 * l0 * l1 * b[0] +
-         2.0 * l1 * l2 * b[1] + 2.0 * l2 * l0 * b[2];
-}
-
-void QuadraticPatch::derivatives(double u, double w, Vec3& du, Vec3& dv) const {
-  const double l0 = 1.0 - u - w, l1 = u, l2 = w;
-  // ∂/∂u moves weight from λ0 to λ1; ∂/∂v from λ0 to λ2.
-  du = 2.0 * (l1 * v[1] - l0 * v[0] + (l0 - l1) * b[0] + l2 * b[1] - l2 * b[2]);
-  dv = 2.0 * (l2 * v[2] - l0 * v[0] - l1 * b[0] + l1 * b[1] + (l0 - l2) * b[2]);
-}
-
 Vec3 QuadraticPatch::edgePoint(int k, double t) const {
   const Vec3& a = v[k];
   const Vec3& c = v[(k + 1) % 3];

@@ -27,12 +27,13 @@ Vec3 parametricNormal(const QuadraticPatch& fp, double orientation, double u, do
   return orientation * safeNormalized(du.cross(dv), Vec3::Zero());
 }
 
-// f_p(u,v) projected along f_p's normal onto q = 0, or nullopt where no root is near.
+// f_p(u,v) projected along f_p's normal onto q = 0, or nullopt where no root is within
+// `reach` (longestEdge(fp), which the caller computes once per patch).
 std::optional<Vec3> projectOntoQuadric(const QuadricCoeffs& q, const QuadraticPatch& fp,
-                                       double orientation, double u, double v) {
+                                       double orientation, double u, double v, double reach) {
   const Vec3 p = fp.position(u, v);
   const Vec3 n = parametricNormal(fp, orientation, u, v);
-  const auto s = nearestRayRoot(q, p, n, longestEdge(fp));
+  const auto s = nearestRayRoot(q, p, n, reach);
   if (!s) return std::nullopt;
   return Vec3(p + *s * n);
 }
@@ -69,13 +70,14 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
 
     Bounds3 box;
     for (int k = 0; k < 3; ++k) box.extend(m.corner(t, k));
+    const double reach = longestEdge(fp);
     for (int i = 0; i <= kBoundSamples; ++i)
       for (int j = 0; i + j <= kBoundSamples; ++j) {
         const auto p = projectOntoQuadric(patch.q, fp, orient, double(i) / kBoundSamples,
-                                          double(j) / kBoundSamples);
+                                          double(j) / kBoundSamples, reach);
         if (p && patch.inside(*p)) box.extend(*p);
       }
-    box.inflate(kBoundMargin * longestEdge(fp));
+    box.inflate(kBoundMargin * reach);
     patch.bounds = box;
   });
 }
@@ -87,7 +89,7 @@ SurfacePoint ImplicitModel::evaluate(size_t t, double u, double v) const {
   // Where f_p is singular its normal falls back to the triangle's, oriented the same way.
   const Vec3 nParam =
       safeNormalized(parametricNormal(fp, orient, u, v), orient * mesh().faceNormal(t));
-  const auto p = projectOntoQuadric(patch.q, fp, orient, u, v);
+  const auto p = projectOntoQuadric(patch.q, fp, orient, u, v, longestEdge(fp));
   if (!p) return {fp.position(u, v), nParam};
   return {*p, safeNormalized(patch.orientation * quadricGradient(patch.q, *p), nParam)};
 }

@@ -4,22 +4,10 @@
 
 namespace quadtri {
 
-double evalQuadric(const QuadricCoeffs& q, const Vec3& p) {
-  const double x = p.x(), y = p.y(), z = p.z();
-  return q[0] * x * x + q[1] * y * y + q[2] * z * z + q[3] * x * y + q[4] * x * z + q[5] * y * z +
-         q[6] * x + q[7] * y + q[8] * z + q[9];
-}
-
 Mat3 quadraticPart(const QuadricCoeffs& q) {
   Mat3 m;
   m << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];
   return m;
-}
-
-Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p) {
-  const double x = p.x(), y = p.y(), z = p.z();
-  return Vec3(2 * q[0] * x + q[3] * y + q[4] * z + q[6], 2 * q[1] * y + q[3] * x + q[5] * z + q[7],
-              2 * q[2] * z + q[4] * x + q[5] * y + q[8]);
 }
 
 namespace {

@@ -66,6 +66,20 @@ struct QuadraticPatch {
   Vec3 edgePoint(int k, double t) const;
 };
 
+// Inline: conversion evaluates them at dozens of points per patch.
+inline Vec3 QuadraticPatch::position(double u, double w) const {
+  const double l0 = 1.0 - u - w, l1 = u, l2 = w;
+  return l0 * l0 * v[0] + l1 * l1 * v[1] + l2 * l2 * v[2] + 2.0 * l0 * l1 * b[0] +
+         2.0 * l1 * l2 * b[1] + 2.0 * l2 * l0 * b[2];
+}
+
+inline void QuadraticPatch::derivatives(double u, double w, Vec3& du, Vec3& dv) const {
+  const double l0 = 1.0 - u - w, l1 = u, l2 = w;
+  // ∂/∂u moves weight from λ0 to λ1; ∂/∂v from λ0 to λ2.
+  du = 2.0 * (l1 * v[1] - l0 * v[0] + (l0 - l1) * b[0] + l2 * b[1] - l2 * b[2]);
+  dv = 2.0 * (l2 * v[2] - l0 * v[0] - l1 * b[0] + l1 * b[1] + (l0 - l2) * b[2]);
+}
+
 /// The patch of triangle t, with control points from `controlPoints` (edgeControlPoints).
 QuadraticPatch quadraticPatch(const TriangleMesh& mesh,
                               const std::vector<std::array<Vec3, 3>>& controlPoints, size_t t);

@@ -12,8 +12,17 @@ namespace quadtri {
 /// Coefficients A..J of A x² + B y² + C z² + D xy + E xz + F yz + G x + H y + I z + J = 0.
 using QuadricCoeffs = std::array<double, 10>;
 
-double evalQuadric(const QuadricCoeffs& q, const Vec3& p);
-Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p);
+// Inline: conversion evaluates them dozens of times per patch, tracing on every candidate.
+inline double evalQuadric(const QuadricCoeffs& q, const Vec3& p) {
+  const double x = p.x(), y = p.y(), z = p.z();
+  return q[0] * x * x + q[1] * y * y + q[2] * z * z + q[3] * x * y + q[4] * x * z + q[5] * y * z +
+         q[6] * x + q[7] * y + q[8] * z + q[9];
+}
+inline Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p) {
+  const double x = p.x(), y = p.y(), z = p.z();
+  return Vec3(2 * q[0] * x + q[3] * y + q[4] * z + q[6], 2 * q[1] * y + q[3] * x + q[5] * z + q[7],
+              2 * q[2] * z + q[4] * x + q[5] * y + q[8]);
+}
 /// The symmetric M of q's quadratic part: A x² + ... + F yz = xᵀ M x.
 Mat3 quadraticPart(const QuadricCoeffs& q);
 
