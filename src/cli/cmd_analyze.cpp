@@ -61,13 +61,10 @@ Action addAnalyzeCommand(CLI::App& app) {
     MemoryBudget budget;
     budget.maxBytes = maxMemory();
     for (const std::string& name : names) {
-      budget.bytesPerTriangle =
-          std::max(budget.bytesPerTriangle,
-                   modelBytesPerTriangle(name, opt->analysis.tessellation, ModelUse::Render));
+      setModelBytes(budget, name, opt->analysis.tessellation, ModelUse::Render, /*dearest=*/true);
       if (!opt->heatmaps.empty())
-        budget.bytesPerTriangle =
-            std::max(budget.bytesPerTriangle,
-                     modelBytesPerTriangle(name, Tessellation::thesis(), ModelUse::ConvertMesh));
+        setModelBytes(budget, name, Tessellation::thesis(), ModelUse::ConvertMesh,
+                      /*dearest=*/true);
     }
     BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     if (const std::optional<std::string> repaired = repairWarning(input.mesh, opt->mesh))

@@ -47,12 +47,11 @@ Action addConvertCommand(CLI::App& app) {
     // The mesh and its model must fit in --max-memory, checked before either is built.
     MemoryBudget budget;
     budget.maxBytes = maxMemory();
-    budget.bytesPerTriangle =
-        modelBytesPerTriangle(opt->model, tessellation,
-                              std::filesystem::path(opt->output).extension() == ".json" ||
-                                      std::filesystem::path(opt->output).extension() == ".qtp"
-                                  ? ModelUse::ConvertJson
-                                  : ModelUse::ConvertMesh);
+    setModelBytes(budget, opt->model, tessellation,
+                  std::filesystem::path(opt->output).extension() == ".json" ||
+                          std::filesystem::path(opt->output).extension() == ".qtp"
+                      ? ModelUse::ConvertJson
+                      : ModelUse::ConvertMesh);
     BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     if (const std::optional<std::string> repaired = repairWarning(input.mesh, opt->mesh))
       fmt::print(stderr, "warning: {}\n", *repaired);

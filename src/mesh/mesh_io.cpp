@@ -529,9 +529,9 @@ BuiltinMesh loadMeshSpec(const std::string& spec, const NormalOptions& normals,
   // Charged before it is built: a spec such as cube:1024 must be refused, not built.
   const uint64_t triangles = builtinTriangleCount(*shape);
   if (budget)
-    chargeMemory(*budget, triangles * budget->bytesPerTriangle, spec,
-                 fmt::format("building {} per triangle of its {} triangles",
-                             formatBytes(budget->bytesPerTriangle), triangles));
+    chargeMemory(
+        *budget, modelBytes(*budget, triangles), spec,
+        fmt::format("building {} of its {} triangles", describeModelBytes(*budget), triangles));
   BuiltinMesh b = makeBuiltin(shape->name, shape->params);
   applyNormals(b.mesh, normals);  // File keeps the shape's analytic normals
   return b;

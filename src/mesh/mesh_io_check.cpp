@@ -419,18 +419,31 @@ void chargeMemory(MemoryBudget& budget, uint64_t bytes, const std::string& name,
   budget.usedBytes = total;
 }
 
+uint64_t modelBytes(const MemoryBudget& budget, uint64_t triangles) {
+  const uint64_t capped =
+      std::min(mulAdd(triangles, budget.cappedBytesPerTriangle), budget.cappedBytes);
+  return mulAdd(triangles, budget.bytesPerTriangle, capped);
+}
+
+std::string describeModelBytes(const MemoryBudget& budget) {
+  std::string text = formatBytes(budget.bytesPerTriangle) + " per triangle";
+  if (budget.cappedBytesPerTriangle > 0 && budget.cappedBytes > 0)
+    text +=
+        fmt::format(" and {} more per triangle up to {}",
+                    formatBytes(budget.cappedBytesPerTriangle), formatBytes(budget.cappedBytes));
+  return text;
+}
+
 void chargeMeshFile(MemoryBudget& budget, const MeshFileInfo& info,
                     const std::filesystem::path& path) {
-  const uint64_t model = mulAdd(info.triangles, budget.bytesPerTriangle);
+  const uint64_t model = modelBytes(budget, info.triangles);
   const uint64_t bytes = info.loadBytes + std::min(model, ~info.loadBytes);
-  chargeMemory(
-      budget, bytes, path.string(),
-      fmt::format("loading its {} vertices and {} faces ({}){}", info.vertices, info.faces,
-                  formatBytes(info.loadBytes),
-                  budget.bytesPerTriangle > 0
-                      ? fmt::format(" and building {} per triangle ({})",
-                                    formatBytes(budget.bytesPerTriangle), formatBytes(model))
-                      : std::string()));
+  chargeMemory(budget, bytes, path.string(),
+               fmt::format("loading its {} vertices and {} faces ({}){}", info.vertices, info.faces,
+                           formatBytes(info.loadBytes),
+                           model > 0 ? fmt::format(" and building {} ({})",
+                                                   describeModelBytes(budget), formatBytes(model))
+                                     : std::string()));
 }
 
 }  // namespace quadtri

@@ -71,7 +71,7 @@ constexpr ModelEntry kModels[] = {
     {"phong", make<PhongModel>, {false, 0, 1900, 290}},
     {"pn", make<PnModel>, {false, 0, 6100, 290}},
     {"nagata", make<NagataModel>, {false, 0, 2500, 290}},
-    {"quadric-g1", make<G1Model>, {false, 5400, 1700, 80}},
+    {"quadric-g1", make<G1Model>, {false, 1250, 1700, 80, 330}},
 };
 
 }  // namespace

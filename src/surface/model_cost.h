@@ -10,12 +10,18 @@ namespace quadtri {
 /// `/usr/bin/time -f %M` as the slope between two sizes of one shape (icospheres of 20,480 and
 /// 81,920 triangles for `convert --model M -o x.obj`, `-o x.json` and `analyze --model M`; for
 /// the directly traced quadric-implicit-robust and quadric-g1, `render` on tori of 40,960 and
-/// 81,920 triangles, scripts/measure-first-pixel.sh).
+/// 81,920 triangles, scripts/measure-first-pixel.sh; quadric-g1's split between triangles and
+/// regions from those and a 1,000,000-triangle torus, where the region count is capped).
 struct ModelCost {
   bool inputTriangles = false;  ///< traced and written as the input triangles (no tessellation)
   double traced = 0;            ///< Render, when not tessellated: the patches and their geometry
   double json = 0;              ///< ConvertJson: one patch as a JSON object and its text
   double latticeMesh = 0;       ///< ConvertMesh: per lattice triangle of the tessellated surface
+  /// Render, for quadric-g1: per ray-tracing region (a BezierSubPatch, its copy while the blocks
+  /// of the build are joined, its Embree primitive and BVH share), of which a mesh has as many
+  /// as defaultSubPatchBudget gives its pieces. Beside it, `traced` is what does not grow with
+  /// the regions.
+  double perRegion = 0;
 };
 
 /// The cost of the model named `name`; nullptr for a name that is no model.

@@ -36,4 +36,33 @@ uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tesse
   return 0;
 }
 
+CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use) {
+  const ModelCost* cost = modelCost(model);
+  if (!cost) {
+    CappedModelBytes most;
+    for (const std::string& name : modelNames()) {
+      const CappedModelBytes c = modelCappedBytes(name, use);
+      most.perTriangle = std::max(most.perTriangle, c.perTriangle);
+      most.cap = std::max(most.cap, c.cap);
+    }
+    return most;
+  }
+  if (use != ModelUse::Render || cost->perRegion <= 0) return {};
+  // defaultSubPatchBudget's share per piece, its cap, and G1Model's pieces per triangle.
+  constexpr size_t kPiecesPerTriangle = 3;
+  constexpr size_t kRegionsPerPiece = 8, kMaxRegions = size_t(1) << 22;
+  return {uint64_t(double(kPiecesPerTriangle * kRegionsPerPiece) * cost->perRegion),
+          uint64_t(double(kMaxRegions) * cost->perRegion)};
+}
+
+void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellation& tessellation,
+                   ModelUse use, bool dearest) {
+  const uint64_t perTriangle = modelBytesPerTriangle(model, tessellation, use);
+  const CappedModelBytes capped = modelCappedBytes(model, use);
+  if (!dearest) budget.bytesPerTriangle = budget.cappedBytesPerTriangle = budget.cappedBytes = 0;
+  budget.bytesPerTriangle = std::max(budget.bytesPerTriangle, perTriangle);
+  budget.cappedBytesPerTriangle = std::max(budget.cappedBytesPerTriangle, capped.perTriangle);
+  budget.cappedBytes = std::max(budget.cappedBytes, capped.cap);
+}
+
 }  // namespace quadtri

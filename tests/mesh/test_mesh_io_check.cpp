@@ -331,6 +331,31 @@ TEST(MeshIoCheck, MemoryBudgetRefusesBeforeLoading) {
                  {"icosphere:3", "1280 triangles"});
 }
 
+TEST(MeshIoCheck, CappedModelBytesStopGrowingAtTheirCap) {
+  MemoryBudget budget;
+  budget.bytesPerTriangle = 100;
+  budget.cappedBytesPerTriangle = 50;
+  budget.cappedBytes = 5000;
+  EXPECT_EQ(modelBytes(budget, 0), 0u);
+  EXPECT_EQ(modelBytes(budget, 10), 10u * 150u);              // below the cap: 150 per triangle
+  EXPECT_EQ(modelBytes(budget, 100), 100u * 150u);            // at the cap exactly
+  EXPECT_EQ(modelBytes(budget, 1000), 1000u * 100u + 5000u);  // above it: 100 per triangle more
+  EXPECT_EQ(modelBytes(budget, ~uint64_t(0)), ~uint64_t(0));  // saturates, never wraps
+  expectContains(describeModelBytes(budget),
+                 {formatBytes(100) + " per triangle",
+                  formatBytes(50) + " more per triangle up to " + formatBytes(5000)});
+  // Charged so: a built-in shape over the limit only through its uncapped part is refused, one
+  // that a per-triangle estimate of the capped part would refuse is not.
+  budget.maxBytes = 1280 * 100 + 5000;
+  EXPECT_EQ(loadMeshSpec("icosphere:3", NormalSource::File, &budget).mesh.triangleCount(), 1280u);
+  EXPECT_EQ(budget.usedBytes, 1280u * 100u + 5000u);
+  MemoryBudget tight = budget;
+  tight.usedBytes = 0;
+  tight.maxBytes -= 1;
+  expectContains(refusal([&] { loadMeshSpec("icosphere:3", NormalSource::File, &tight); }),
+                 {"icosphere:3", "more per triangle up to"});
+}
+
 TEST(MemoryLimit, ByteSizes) {
   EXPECT_EQ(parseByteSize("123456"), 123456u);
   EXPECT_EQ(parseByteSize("8G"), uint64_t(8) << 30);

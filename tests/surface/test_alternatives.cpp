@@ -5,6 +5,7 @@
 
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
+#include "quadtri/surface/bezier_intersect.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/model_memory.h"
 #include "quadtri/surface/nagata_model.h"
@@ -440,6 +441,48 @@ TEST(ModelMemory, EveryModelHasItsOwnCost) {
     dearest = std::max(dearest, b);
   }
   EXPECT_EQ(modelBytesPerTriangle("no-such-model", fine, ModelUse::Render), dearest);
+}
+
+// quadric-g1's regions are charged as many as defaultSubPatchBudget gives its three pieces per
+// triangle, so a fine mesh is no longer charged regions it will not get; no other model has a
+// capped part, and nothing is capped but in rendering.
+TEST(ModelMemory, G1RegionsAreChargedAsTheirBudgetCapsThem) {
+  const Tessellation tess;
+  const CappedModelBytes g1 = modelCappedBytes("quadric-g1", ModelUse::Render);
+  ASSERT_GT(g1.perTriangle, 0u);
+  const double perRegion = double(g1.cap) / double(defaultSubPatchBudget(size_t(1) << 40));
+  for (const uint64_t triangles : {uint64_t(81920), uint64_t(174762), uint64_t(1000000)}) {
+    SCOPED_TRACE(triangles);
+    MemoryBudget budget;
+    setModelBytes(budget, "quadric-g1", tess, ModelUse::Render);
+    const double regions = double(defaultSubPatchBudget(3 * triangles));
+    const double expected =
+        double(triangles) * double(budget.bytesPerTriangle) + regions * perRegion;
+    EXPECT_NEAR(double(modelBytes(budget, triangles)), expected, 1e-9 * expected + 1.0);
+  }
+  // Beyond 174,762 triangles the regions stop growing: a million triangles cost the same per
+  // triangle as the uncapped part, not 5 to 10 kB as the small meshes measured.
+  MemoryBudget budget;
+  setModelBytes(budget, "quadric-g1", tess, ModelUse::Render);
+  EXPECT_EQ(modelBytes(budget, 2000000) - modelBytes(budget, 1000000),
+            1000000 * budget.bytesPerTriangle);
+  for (const std::string& name : modelNames()) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(modelCappedBytes(name, ModelUse::ConvertJson).cap, 0u);
+    EXPECT_EQ(modelCappedBytes(name, ModelUse::ConvertMesh).cap, 0u);
+    if (name != "quadric-g1") {
+      EXPECT_EQ(modelCappedBytes(name, ModelUse::Render).cap, 0u);
+    }
+  }
+  EXPECT_EQ(modelCappedBytes("no-such-model", ModelUse::Render).cap, g1.cap);
+  // setModelBytes replaces a budget's model, and with `dearest` keeps the larger of each part.
+  setModelBytes(budget, "phong", tess, ModelUse::Render);
+  EXPECT_EQ(budget.cappedBytes, 0u);
+  setModelBytes(budget, "quadric-g1", tess, ModelUse::Render, /*dearest=*/true);
+  EXPECT_EQ(budget.cappedBytes, g1.cap);
+  EXPECT_EQ(budget.bytesPerTriangle,
+            std::max(modelBytesPerTriangle("phong", tess, ModelUse::Render),
+                     modelBytesPerTriangle("quadric-g1", tess, ModelUse::Render)));
 }
 
 }  // namespace

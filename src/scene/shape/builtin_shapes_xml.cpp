@@ -35,7 +35,7 @@ TriangleMesh cubeMesh() {
 
 // Built-in meshes are `flat` triangles whatever --model says.
 void addFlatShape(ShapeBuildContext& context, TriangleMesh mesh) {
-  context.budget.bytesPerTriangle = modelBytesPerTriangle("flat", Tessellation{}, ModelUse::Render);
+  setModelBytes(context.budget, "flat", Tessellation{}, ModelUse::Render);
   addMeshShape(context, std::move(mesh), "flat", Tessellation{});
 }
 

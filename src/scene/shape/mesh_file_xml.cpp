@@ -24,7 +24,7 @@ void MeshFileShapeParams::build(ShapeBuildContext& context) const {
   const std::string& chosen = context.modelOverride ? *context.modelOverride : model;
   const Tessellation tess =
       tessellation.empty() ? Tessellation{} : Tessellation::parse(tessellation);
-  context.budget.bytesPerTriangle = modelBytesPerTriangle(chosen, tess, ModelUse::Render);
+  setModelBytes(context.budget, chosen, tess, ModelUse::Render);
   TriangleMesh mesh = loadMesh(filename, normals, &context.budget);
   if (faceNormals) {
     mesh.normals.clear();

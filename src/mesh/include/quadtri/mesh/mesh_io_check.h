@@ -47,11 +47,23 @@ uint64_t estimateLoadBytes(const MeshFileInfo& info);
 /// A limit on the memory one command may use for its meshes and what it builds from them. One
 /// budget may be shared by several meshes (the shapes of a scene): each charge adds to usedBytes.
 struct MemoryBudget {
-  uint64_t maxBytes = 0;                ///< 0: no limit
-  uint64_t bytesPerTriangle = 0;        ///< what the caller builds per input triangle (its model)
+  uint64_t maxBytes = 0;          ///< 0: no limit
+  uint64_t bytesPerTriangle = 0;  ///< what the caller builds per input triangle (its model)
+  /// What the caller builds that grows with the triangles only up to a cap (the regions that
+  /// quadric-g1 traces, whose count is capped): this much per triangle, at most cappedBytes per
+  /// mesh (0: nothing capped).
+  uint64_t cappedBytesPerTriangle = 0, cappedBytes = 0;
   uint64_t usedBytes = 0;               ///< charged so far
   std::string option = "--max-memory";  ///< how the limit is named in errors
 };
+
+/// What the caller builds for one mesh of `triangles` triangles (saturating, never wrapping):
+/// bytesPerTriangle per triangle, and cappedBytesPerTriangle more per triangle up to cappedBytes.
+uint64_t modelBytes(const MemoryBudget& budget, uint64_t triangles);
+
+/// How modelBytes is made up, for errors: "N per triangle" and, where something is capped,
+/// " and M more per triangle up to C".
+std::string describeModelBytes(const MemoryBudget& budget);
 
 /// Charges `bytes` (described by `what`, e.g. "loading and converting 12 triangles") for
 /// `name` to the budget; throws Error with the estimate and the limit when it would exceed

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "quadtri/mesh/mesh_io_check.h"
 #include "quadtri/surface/tessellate.h"
 
 namespace quadtri {
@@ -22,5 +23,21 @@ enum class ModelUse { ConvertMesh, ConvertJson, Render };
 /// refuses it later).
 uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tessellation,
                                ModelUse use);
+
+/// The part of a model's cost that grows with the mesh only up to a cap, beside
+/// modelBytesPerTriangle: the regions quadric-g1 traces (defaultSubPatchBudget: 8 per piece,
+/// three pieces per triangle, at most 2^22 per mesh), when it is rendered. Zero for every other
+/// model and use; an unknown name costs the dearest model's.
+struct CappedModelBytes {
+  uint64_t perTriangle = 0;  ///< while below the cap
+  uint64_t cap = 0;          ///< per mesh
+};
+CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use);
+
+/// Makes `budget` charge each mesh loaded with it what `model` costs for `use` (its
+/// bytesPerTriangle and capped bytes); with `dearest`, only raises them (several models, one at a
+/// time, on one mesh).
+void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellation& tessellation,
+                   ModelUse use, bool dearest = false);
 
 }  // namespace quadtri
