@@ -486,7 +486,7 @@ bool splitPiece(const BezierTriangle& piece, uint32_t p, size_t share, double si
 }  // namespace
 
 size_t defaultSubPatchBudget(size_t pieces) {
-  return std::max<size_t>(65536, std::min<size_t>(8 * pieces, size_t(1) << 22));
+  return std::max(kMinSubPatchBudget, std::min(kSubPatchesPerPiece * pieces, kMaxSubPatchBudget));
 }
 
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,

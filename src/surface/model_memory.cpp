@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "model_cost.h"
+#include "quadtri/surface/bezier_intersect.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri {
@@ -48,11 +49,9 @@ CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use) {
     return most;
   }
   if (use != ModelUse::Render || cost->perRegion <= 0) return {};
-  // defaultSubPatchBudget's share per piece, its cap, and G1Model's pieces per triangle.
-  constexpr size_t kPiecesPerTriangle = 3;
-  constexpr size_t kRegionsPerPiece = 8, kMaxRegions = size_t(1) << 22;
-  return {uint64_t(double(kPiecesPerTriangle * kRegionsPerPiece) * cost->perRegion),
-          uint64_t(double(kMaxRegions) * cost->perRegion)};
+  // defaultSubPatchBudget's share per piece and its cap, on G1Model's three pieces per triangle.
+  return {uint64_t(double(3 * kSubPatchesPerPiece) * cost->perRegion),
+          uint64_t(double(kMaxSubPatchBudget) * cost->perRegion)};
 }
 
 void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellation& tessellation,

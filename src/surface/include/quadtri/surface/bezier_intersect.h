@@ -145,6 +145,8 @@ struct BezierSubPatch {
 /// 4,194,304 (2^22, 704 MiB of regions). On a fine mesh the regions are far below a pixel and
 /// more of them only cost memory and build time (a 1,000,000-triangle torus: 24 M regions,
 /// 9.4 GB at peak, against 2.9 GB with the cap, and a render no slower).
+constexpr size_t kSubPatchesPerPiece = 8, kMinSubPatchBudget = 65536,
+                 kMaxSubPatchBudget = size_t(1) << 22;
 size_t defaultSubPatchBudget(size_t pieces);
 
 std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& pieces,
