@@ -50,7 +50,7 @@ constexpr int kThreads = 2;
 constexpr int kResolution = 128;
 constexpr int kSamplesPerPixel = 16;
 // Raw throughput keeps the fastest of a few passes: the one least disturbed by other processes.
-constexpr int kRawPasses = 3;
+constexpr int kRawPasses = 8;
 const char* const kModels[] = {"shading", "quadric-param", "quadric-implicit",
                                "quadric-implicit-robust", "quadric-g1"};
 

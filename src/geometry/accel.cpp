@@ -61,13 +61,14 @@ struct TraceContext {
 };
 
 RayHit patchHit(const std::vector<QuadricPatch>& patches, const Ray& ray, double t,
-                unsigned geometry, unsigned primitive) {
+                unsigned geometry, unsigned primitive, bool withNormal = true) {
   RayHit hit;
   hit.t = t;
   hit.geometry = geometry;
   hit.primitive = primitive;
-  hit.geometricNormal =
-      safeNormalized(primitiveNormal(patches, primitive, ray.origin + t * ray.direction));
+  if (withNormal)
+    hit.geometricNormal =
+        safeNormalized(primitiveNormal(patches, primitive, ray.origin + t * ray.direction));
   return hit;
 }
 
@@ -522,7 +523,7 @@ void Accel::commit() {
   impl_->committed = true;
 }
 
-RayHit Accel::intersect(const Ray& ray) const {
+RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
   impl_->requireCommitted("intersect");
   TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
@@ -541,7 +542,8 @@ RayHit Accel::intersect(const Ray& ray) const {
                      BezierHit{ctx.patchT, ctx.pieceU, ctx.pieceV}, rayhit.hit.geomID,
                      rayhit.hit.primID);
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive)
-    return patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID);
+    return patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID,
+                    normal == HitNormal::Fill);
   if (rayhit.hit.geomID < impl_->flatOwner.size() && impl_->flatOwner[rayhit.hit.geomID]) {
     // A flat Bézier piece traced as its triangle: the hit is the piece's, at the same (u, v).
     const BezierGeometry& g = *impl_->flatOwner[rayhit.hit.geomID];
@@ -555,7 +557,8 @@ RayHit Accel::intersect(const Ray& ray) const {
   hit.u = rayhit.hit.u;
   hit.v = rayhit.hit.v;
   // Embree's Ng is (v1 - v0) × (v2 - v0) for triangles, the same side as faceNormal().
-  hit.geometricNormal = safeNormalized(Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
+  if (normal == HitNormal::Fill)
+    hit.geometricNormal = safeNormalized(Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
   return hit;
 }
 

@@ -64,15 +64,18 @@ Ray PerspectiveCamera::generateRay(const Vec2& film) const {
   // principal point, which is the film's centre unless principal_point_offset moves it.
   const double fx = film.x() / params_.width - params_.principalPointOffset.x();
   const double fy = film.y() / params_.height - params_.principalPointOffset.y();
-  const Vec3 local =
-      Vec3(tanHalfX_ * (1.0 - 2.0 * fx), tanHalfY_ * (1.0 - 2.0 * fy), 1.0).normalized();
+  // The direction in camera space at unit depth; normalised once, after the rotation to world
+  // space (which may also scale).
+  const Vec3 local(tanHalfX_ * (1.0 - 2.0 * fx), tanHalfY_ * (1.0 - 2.0 * fy), 1.0);
   const Mat4& m = params_.cameraToWorld;
   Ray ray;
   ray.direction = safeNormalized(m.topLeftCorner<3, 3>() * local);
   ray.origin = m.topRightCorner<3, 1>();
-  // Clip planes are distances along the camera's z axis, so they depend on the pixel.
-  ray.tnear = params_.nearClip / local.z();
-  ray.tfar = params_.farClip / local.z();
+  // Clip planes are distances along the camera's z axis, so they depend on the pixel: depth z
+  // is reached after z·|local| along the unit direction.
+  const double length = local.norm();
+  ray.tnear = params_.nearClip * length;
+  ray.tfar = params_.farClip * length;
   return ray;
 }
 

@@ -155,7 +155,8 @@ const PerspectiveCamera& RenderScene::camera() const {
 }
 
 std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
-  const RayHit hit = accel_.intersect(ray);
+  // Triangle and patch normals are derived below from the double-precision hit.
+  const RayHit hit = accel_.intersect(ray, Accel::HitNormal::Skip);
   if (!hit.valid()) return std::nullopt;
   const GeometryRecord& record = records_[hit.geometry];
   SurfaceInteraction si;
@@ -240,8 +241,10 @@ Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
   const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
   const Vec3 end = target + side * floatErrorOffset(maxAbs(target)) * targetNormal;
   const Vec3 toEnd = end - ray.origin;
-  ray.direction = safeNormalized(toEnd);
-  ray.tfar = toEnd.norm();
+  // safeNormalized(toEnd) and |toEnd| from one square root.
+  const double length = toEnd.norm();
+  ray.direction = length > 0.0 && std::isfinite(length) ? Vec3(toEnd / length) : Vec3(0, 0, 1);
+  ray.tfar = length;
   return ray;
 }
 

@@ -7,8 +7,6 @@
 namespace quadtri {
 namespace {
 
-constexpr double kInvPi = 1.0 / kPi;
-
 /// Uniform in the cone cos θ ≥ 1 − h around +z, given h = 1 − cos θmax directly: small cones
 /// (distant sphere lights) then keep full precision, as 1 − cos θ never cancels.
 Vec3 coneFromOneMinusCos(const Vec2& u, double oneMinusCosMax) {
@@ -20,21 +18,6 @@ Vec3 coneFromOneMinusCos(const Vec2& u, double oneMinusCosMax) {
 }
 
 }  // namespace
-
-Vec2 squareToUniformDiskConcentric(const Vec2& u) {
-  const double a = 2.0 * u.x() - 1.0, b = 2.0 * u.y() - 1.0;
-  if (a == 0.0 && b == 0.0) return Vec2::Zero();
-  // Squares of side 2r map to circles of radius r; each wedge between diagonals to its sector.
-  double r, phi;
-  if (std::abs(a) > std::abs(b)) {
-    r = a;
-    phi = (kPi / 4.0) * (b / a);
-  } else {
-    r = b;
-    phi = kPi / 2.0 - (kPi / 4.0) * (a / b);
-  }
-  return Vec2(r * std::cos(phi), r * std::sin(phi));
-}
 
 double squareToUniformDiskConcentricPdf(const Vec2& p) {
   return p.squaredNorm() <= 1.0 ? kInvPi : 0.0;
@@ -69,15 +52,6 @@ Vec3 squareToUniformHemisphere(const Vec2& u) {
 
 double squareToUniformHemispherePdf(const Vec3& v) {
   return v.z() >= 0.0 ? 0.5 * kInvPi : 0.0;
-}
-
-Vec3 squareToCosineHemisphere(const Vec2& u) {
-  const Vec2 d = squareToUniformDiskConcentric(u);
-  return Vec3(d.x(), d.y(), std::sqrt(std::max(0.0, 1.0 - d.squaredNorm())));
-}
-
-double squareToCosineHemispherePdf(const Vec3& v) {
-  return v.z() >= 0.0 ? v.z() * kInvPi : 0.0;
 }
 
 Vec3 squareToUniformCone(const Vec2& u, double cosThetaMax) {

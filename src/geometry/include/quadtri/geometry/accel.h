@@ -64,8 +64,12 @@ class Accel {
   uint32_t addBezierTriangles(const std::vector<BezierTriangle>& pieces);
   void commit();
 
+  /// Whether intersect fills RayHit::geometricNormal for triangle and quadric-patch hits. A caller
+  /// that derives its own normal from the hit in double precision (RenderScene) skips it; a
+  /// Bézier piece's normal comes with its point and is always filled.
+  enum class HitNormal { Fill, Skip };
   /// Nearest hit in (ray.tnear, ray.tfar), or an invalid RayHit.
-  RayHit intersect(const Ray& ray) const;
+  RayHit intersect(const Ray& ray, HitNormal normal = HitNormal::Fill) const;
   /// True when anything is hit in (ray.tnear, ray.tfar).
   bool occluded(const Ray& ray) const;
   /// Every hit in (ray.tnear, ray.tfar), unordered, appended to `hits`: each candidate Embree

@@ -3,12 +3,64 @@
 // estimators divide by exactly what was sampled. The pdf functions return zero off the domain.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 #include "quadtri/math/vec.h"
 
 namespace quadtri {
 
+inline constexpr double kInvPi = 1.0 / kPi;
+
+namespace warp_detail {
+/// Taylor coefficients (−1)^m / (2m + first)! for m = 0 … N − 1.
+template <int N>
+constexpr std::array<double, N> alternatingInverseFactorials(int first) {
+  std::array<double, N> c{};
+  double factorial = 1.0;
+  for (int k = 2; k <= first; ++k) factorial *= double(k);
+  for (int m = 0; m < N; ++m) {
+    c[size_t(m)] = (m % 2 == 0 ? 1.0 : -1.0) / factorial;
+    factorial *= double(2 * m + first + 1) * double(2 * m + first + 2);
+  }
+  return c;
+}
+inline constexpr auto kSinSeries = alternatingInverseFactorials<9>(1);
+inline constexpr auto kCosSeries = alternatingInverseFactorials<10>(0);
+}  // namespace warp_detail
+
+/// sin x and cos x for |x| ≤ π/4 to within an ulp, without range reduction: the angles of the
+/// concentric map, which every diffuse bounce draws, at a fraction of std::sin and std::cos.
+/// sin x = x Σ (−1)^m x^2m / (2m + 1)! to x¹⁷ and cos x = Σ (−1)^m x^2m / (2m)! to x¹⁸, in Horner
+/// form in x²; the first terms left out, x¹⁹/19! and x²⁰/20!, are below 1e-19 for |x| ≤ π/4, far
+/// under half an ulp of either.
+inline void sinCosQuarter(double x, double& s, double& c) {
+  using warp_detail::kCosSeries, warp_detail::kSinSeries;
+  const double x2 = x * x;
+  double sp = 0.0, cp = 0.0;
+  for (size_t m = kSinSeries.size(); m-- > 0;) sp = kSinSeries[m] + x2 * sp;
+  for (size_t m = kCosSeries.size(); m-- > 0;) cp = kCosSeries[m] + x2 * cp;
+  s = x * sp;
+  c = cp;
+}
+
 /// Concentric map (Shirley & Chiu 1997) to the unit disk: uniform, area-preserving, low distortion.
-Vec2 squareToUniformDiskConcentric(const Vec2& u);
+inline Vec2 squareToUniformDiskConcentric(const Vec2& u) {
+  const double a = 2.0 * u.x() - 1.0, b = 2.0 * u.y() - 1.0;
+  if (a == 0.0 && b == 0.0) return Vec2::Zero();
+  // Squares of side 2r map to circles of radius r; each wedge between diagonals to its sector:
+  // φ = (π/4)(b/a) in the wedges around ±x, φ = π/2 − (π/4)(a/b) around ±y, where cos φ and
+  // sin φ swap to the sine and cosine of (π/4)(a/b). Either way the angle to evaluate lies in
+  // [−π/4, π/4], where sinCosQuarter needs no range reduction.
+  double s, c;
+  if (std::abs(a) > std::abs(b)) {
+    sinCosQuarter((kPi / 4.0) * (b / a), s, c);
+    return Vec2(a * c, a * s);
+  }
+  sinCosQuarter((kPi / 4.0) * (a / b), s, c);
+  return Vec2(b * s, b * c);
+}
 /// 1/π inside the unit disk.
 double squareToUniformDiskConcentricPdf(const Vec2& p);
 
@@ -28,9 +80,14 @@ Vec3 squareToUniformHemisphere(const Vec2& u);
 double squareToUniformHemispherePdf(const Vec3& v);
 
 /// Cosine-weighted upper hemisphere (Malley: lift the concentric disk sample to the sphere).
-Vec3 squareToCosineHemisphere(const Vec2& u);
+inline Vec3 squareToCosineHemisphere(const Vec2& u) {
+  const Vec2 d = squareToUniformDiskConcentric(u);
+  return Vec3(d.x(), d.y(), std::sqrt(std::max(0.0, 1.0 - d.squaredNorm())));
+}
 /// cos θ / π for z ≥ 0.
-double squareToCosineHemispherePdf(const Vec3& v);
+inline double squareToCosineHemispherePdf(const Vec3& v) {
+  return v.z() >= 0.0 ? v.z() * kInvPi : 0.0;
+}
 
 /// Uniform in the cone of directions around +z with cos θ ≥ cosThetaMax.
 Vec3 squareToUniformCone(const Vec2& u, double cosThetaMax);
