@@ -45,12 +45,13 @@ bool nearestRoot(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double
     const double t = roots[i];
     if (!(t > tmin && t < tmax)) continue;
     const Vec3 p = o + t * d;
-    if (!patch.inside(p)) continue;
+    // The box first: the cheapest test, and next to q in the record.
     if ((p.array() < patch.bounds.lo.array()).any() || (p.array() > patch.bounds.hi.array()).any())
       continue;
     if (patch.facing != Vec3::Zero() &&
         !(patch.orientation * quadricGradient(q, p).dot(patch.facing) > 0.0))
       continue;
+    if (!patch.inside(p)) continue;
     if (!accept(p)) continue;
     tHit = t;
     return true;

@@ -31,16 +31,11 @@ Mat3 quadraticPart(const QuadricCoeffs& q);
 /// mesh's shading normals.
 struct QuadricPatch {
   static constexpr int kMaxPlanes = 6;
-  QuadricCoeffs q{};
-  /// (n, d) with inside n·x + d >= 0 (Eigen leaves `{}` uninitialised: zero them explicitly).
-  std::array<Vec4, kMaxPlanes> planes = [] {
-    std::array<Vec4, kMaxPlanes> zero;
-    zero.fill(Vec4::Zero());
-    return zero;
-  }();
-  int planeCount = 0;
-  Bounds3 bounds;
-  double orientation = 1.0;
+  // The fields are in the order a ray test reads them, so that a test of an ordinary patch
+  // touches one contiguous run of the record: which kind of primitive it is, the quadric, its
+  // box, its orientation and facing, then as many planes as it has. (Order only: the record's
+  // size is unchanged.)
+
   /// For an edge bridge: the indices (in the same primitive array) of the two patches it joins;
   /// -1 for an ordinary patch. A bridge's q is the shared edge plane (linear, gradient into the
   /// first patch's side) and the bridge is the part of that plane, inside its clip planes and
@@ -51,15 +46,25 @@ struct QuadricPatch {
   /// For a bridge between patches with a `base`: the plane of each joined patch (an index into
   /// its planes) that the bridge lies in; see bridgeCovers.
   std::array<int8_t, 2> joinPlanes{-1, -1};
+  int planeCount = 0;
+  QuadricCoeffs q{};
+  Bounds3 bounds;
+  double orientation = 1.0;
+  /// Where non-zero, only the sheet facing this way is kept: points where the oriented gradient
+  /// has a positive component along it (one sheet of a quadric that folds back within the
+  /// clip planes, such as a thin hyperboloid hugging its triangle).
+  Vec3 facing = Vec3::Zero();
+  /// (n, d) with inside n·x + d >= 0 (Eigen leaves `{}` uninitialised: zero them explicitly).
+  std::array<Vec4, kMaxPlanes> planes = [] {
+    std::array<Vec4, kMaxPlanes> zero;
+    zero.fill(Vec4::Zero());
+    return zero;
+  }();
   /// Where non-zero (n, d with unit n): the plane of the patch's triangle, n on the side the
   /// oriented gradient points to. The patch's planes then bound a convex cell whose section by
   /// this plane is the triangle, and the patch stands for the region of the cell between its
   /// quadric and this plane (see betweenSheetAndBase).
   Vec4 base = Vec4::Zero();
-  /// Where non-zero, only the sheet facing this way is kept: points where the oriented gradient
-  /// has a positive component along it (one sheet of a quadric that folds back within the
-  /// clip planes, such as a thin hyperboloid hugging its triangle).
-  Vec3 facing = Vec3::Zero();
 
   bool isBridge() const { return joins[0] >= 0; }
 
