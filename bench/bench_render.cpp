@@ -8,20 +8,26 @@
 //                    of incoherent rays (camera position to uniform points in the scene bounds),
 //                    traced through the scene on 2 threads; only the intersect calls are timed.
 //
-//   G1/<scene>       `shading` and `quadric-g1` taking turns on every thesis scene
-//                    (scenes/thesis: setups (a) and (b) with the triangle, tetrahedron,
-//                    icosahedron, torus and, when data/teapot.obj is there, the teapot) and on
-//                    the real-mesh grid (scenes/corpus, when QUADTRI_CORPUS names the corpus
-//                    folder): each iteration one 128×128, 16 spp render on 2 threads with each
-//                    model; the fastest of each and their ratio.
+//   Ratio/<scene>    `shading`, `quadric-implicit`, `quadric-implicit-robust` and `quadric-g1`
+//                    taking turns on every thesis scene (scenes/thesis: setups (a) and (b) with
+//                    the triangle, tetrahedron, icosahedron, torus and, when data/teapot.obj is
+//                    there, the teapot), on the real-mesh grid (scenes/corpus, when
+//                    QUADTRI_CORPUS names the corpus folder) and on the icosphere series
+//                    (scenes/thesis/scaling.xml with icosphere levels 0 to 8, 20 to 1,310,720
+//                    triangles, written to a temporary folder): each iteration one 128×128,
+//                    16 spp render on 2 threads with each model; the fastest of each.
+//                    QUADTRI_RATIO_MODELS=quadric-g1 (a comma-separated list) compares fewer.
 //
-// Summaries after the benchmarks give each model's render time ÷ shading's at equal samples,
-// and quadric-g1's ÷ shading's per scene.
+// Summaries after the benchmarks give each model's render time ÷ shading's at equal samples on
+// setup (a), and per scene each compared model's ÷ shading's beside its target (implicit 1.15,
+// robust 1.2, g1 1.5), with the spread of the ratio over the icosphere series (target 1.1).
 //
 //   quadtri_bench_render --benchmark_min_time=0.5
-//   QUADTRI_CORPUS=corpus quadtri_bench_render --benchmark_filter=G1/
+//   QUADTRI_CORPUS=corpus quadtri_bench_render --benchmark_filter=Ratio/
+//   QUADTRI_RATIO_MODELS=quadric-g1 quadtri_bench_render --benchmark_filter='Ratio/(a|b)-'
 #include <benchmark/benchmark.h>
 #include <fmt/core.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -36,6 +42,7 @@
 
 #include "quadtri/geometry/accel.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/mesh/mesh_io.h"
 #include "quadtri/render/camera.h"
 #include "quadtri/render/render_scene.h"
 #include "quadtri/render/renderer.h"
@@ -202,113 +209,208 @@ void rawModel(benchmark::State& state, const std::string& model, bool coherent) 
   state.counters["hit_fraction"] = double(hits) / double(rays.size());
 }
 
-/// A scene of the G1 comparison: its file (relative to scenes/) and the defines it needs.
-struct G1Scene {
-  std::string name, file;
+/// A scene of the ratio comparison: its name, file (absolute) and the defines it needs; for the
+/// icosphere series, the level whose OBJ it reads (written on first use, -1 otherwise).
+struct RatioScene {
+  std::string name;
+  std::filesystem::path file;
   SceneDefines defines;
+  int icosphereLevel = -1;
 };
 
-std::vector<G1Scene> g1Scenes() {
-  std::vector<G1Scene> scenes;
+/// The models compared with `shading`, and each one's render-time target against it.
+struct RatioModel {
+  const char* name;
+  double target;
+};
+constexpr RatioModel kRatioModels[] = {
+    {"quadric-implicit", 1.15}, {"quadric-implicit-robust", 1.2}, {"quadric-g1", 1.5}};
+// Across the icosphere series, the largest ratio may be at most this times the smallest.
+constexpr double kFlatSeries = 1.1;
+constexpr int kLastIcosphereLevel = 8;  // 1,310,720 triangles
+
+/// The models QUADTRI_RATIO_MODELS names (comma-separated), or all of kRatioModels.
+std::vector<RatioModel> ratioModels() {
+  const char* chosen = std::getenv("QUADTRI_RATIO_MODELS");
+  std::vector<std::string> names;
+  if (chosen) {
+    std::string name;
+    for (const char* c = chosen;; ++c) {
+      if (*c == ',' || *c == '\0') {
+        names.push_back(name);
+        name.clear();
+        if (*c == '\0') break;
+      } else {
+        name.push_back(*c);
+      }
+    }
+  }
+  std::vector<RatioModel> models;
+  for (const RatioModel& m : kRatioModels)
+    if (!chosen || std::find(names.begin(), names.end(), m.name) != names.end())
+      models.push_back(m);
+  return models;
+}
+
+/// Where the icosphere series' scene and meshes are written: the scaling scene reads
+/// ../../data/icosphere-L.obj beside itself.
+std::filesystem::path seriesFolder() {
+  static const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / fmt::format("quadtri-bench-{}", ::getpid());
+  return folder;
+}
+
+std::vector<RatioScene> ratioScenes() {
+  namespace fs = std::filesystem;
+  const fs::path scenesDir = fs::path(QUADTRI_SOURCE_DIR) / "scenes";
+  std::vector<RatioScene> scenes;
   for (const char* setup : {"a", "b"})
     for (const char* object : {"triangle", "tetrahedron", "icosahedron", "torus", "teapot"}) {
       const std::string name = std::string(setup) + "-" + object;
       if (std::string(object) == "teapot" &&
-          !std::filesystem::exists(std::filesystem::path(QUADTRI_SOURCE_DIR) / "data/teapot.obj"))
+          !fs::exists(fs::path(QUADTRI_SOURCE_DIR) / "data/teapot.obj"))
         continue;
-      scenes.push_back({name, "thesis/" + name + ".xml", {}});
+      scenes.push_back({name, scenesDir / "thesis" / (name + ".xml"), {}});
     }
   if (const char* corpus = std::getenv("QUADTRI_CORPUS"))
     for (const char* mesh : {"pinion", "armadillo", "cow", "fandisk", "elephant"}) {
-      const std::filesystem::path folder = std::filesystem::absolute(corpus);
-      if (!std::filesystem::exists(folder / "cgal" / (std::string(mesh) + ".off"))) {
-        fmt::print(stderr, "G1/grid-{}: {} has no cgal/{}.off; skipped\n", mesh, folder.string(),
+      const fs::path folder = fs::absolute(corpus);
+      if (!fs::exists(folder / "cgal" / (std::string(mesh) + ".off"))) {
+        fmt::print(stderr, "Ratio/grid-{}: {} has no cgal/{}.off; skipped\n", mesh, folder.string(),
                    mesh);
         continue;
       }
       scenes.push_back({std::string("grid-") + mesh,
-                        std::string("corpus/grid-") + mesh + ".xml",
+                        scenesDir / "corpus" / (std::string("grid-") + mesh + ".xml"),
                         {{"corpus", folder.string()}}});
     }
+  for (int level = 0; level <= kLastIcosphereLevel; ++level) {
+    const std::string shape = fmt::format("icosphere-{}", level);
+    scenes.push_back(
+        {shape, seriesFolder() / "scenes" / "thesis" / "scaling.xml", {{"shape", shape}}, level});
+  }
   return scenes;
 }
 
-/// The fastest render of each model per scene in the G1 comparison: {shading, quadric-g1}.
-std::map<std::string, std::array<double, 2>>& g1Seconds() {
-  static std::map<std::string, std::array<double, 2>> seconds;
+/// Writes the scaling scene and icosphere level `level`'s mesh into seriesFolder(), once.
+void writeSeriesScene(int level) {
+  namespace fs = std::filesystem;
+  const fs::path sceneDir = seriesFolder() / "scenes" / "thesis";
+  const fs::path mesh = seriesFolder() / "data" / fmt::format("icosphere-{}.obj", level);
+  fs::create_directories(sceneDir);
+  fs::create_directories(mesh.parent_path());
+  if (!fs::exists(sceneDir / "scaling.xml"))
+    fs::copy_file(fs::path(QUADTRI_SOURCE_DIR) / "scenes" / "thesis" / "scaling.xml",
+                  sceneDir / "scaling.xml");
+  if (!fs::exists(mesh)) saveMesh(loadMeshSpec(fmt::format("icosphere:{}", level)).mesh, mesh);
+}
+
+/// The fastest render of each model per scene in the ratio comparison: shading first, then
+/// ratioModels() in order.
+std::map<std::string, std::vector<double>>& ratioSeconds() {
+  static std::map<std::string, std::vector<double>> seconds;
   return seconds;
 }
 
-const char* const kG1Models[2] = {"shading", "quadric-g1"};
-
-/// The scene of the G1 comparison last asked for, built with both models (once: the benchmark
-/// library calls a benchmark again to settle its iterations, and the builds stay out of the
-/// timing; only one scene is kept, the armadillo's sub-patches being hundreds of megabytes).
-std::string& g1Key() {
+/// The scene of the ratio comparison last asked for, built with shading and every compared
+/// model (once: the benchmark library calls a benchmark again to settle its iterations, and the
+/// builds stay out of the timing; only one scene is kept, the largest being gigabytes).
+std::string& ratioKey() {
   static std::string key;
   return key;
 }
 
-std::array<BuiltScene, 2>& g1Pair() {
-  static std::array<BuiltScene, 2> built;
+std::vector<BuiltScene>& ratioBuiltScenes() {
+  static std::vector<BuiltScene> built;
   return built;
 }
 
-std::array<BuiltScene, 2>& g1Built(const G1Scene& scene) {
-  std::string& key = g1Key();
-  std::array<BuiltScene, 2>& built = g1Pair();
-  if (key == scene.name && built[0].scene) return built;
-  built = {};
+std::vector<BuiltScene>& ratioBuilt(const RatioScene& scene) {
+  std::string& key = ratioKey();
+  std::vector<BuiltScene>& built = ratioBuiltScenes();
+  if (key == scene.name && !built.empty()) return built;
+  built.clear();
+  key.clear();
+  if (scene.icosphereLevel >= 0) writeSeriesScene(scene.icosphereLevel);
   SceneDefines defines = scene.defines;
   defines["res"] = std::to_string(kResolution);
   defines["spp"] = std::to_string(kSamplesPerPixel);
-  const SceneDescription description = loadSceneDescription(
-      std::filesystem::path(QUADTRI_SOURCE_DIR) / "scenes" / scene.file, defines);
-  for (size_t m = 0; m < 2; ++m) {
-    built[m] = buildScene(description, kG1Models[m]);
-    built[m].options.samplesPerPixel = kSamplesPerPixel;
-    built[m].options.threads = kThreads;
+  const SceneDescription description = loadSceneDescription(scene.file, defines);
+  std::vector<std::string> models = {"shading"};
+  for (const RatioModel& m : ratioModels()) models.push_back(m.name);
+  for (const std::string& model : models) {
+    built.push_back(buildScene(description, model));
+    built.back().options.samplesPerPixel = kSamplesPerPixel;
+    built.back().options.threads = kThreads;
   }
   key = scene.name;
   return built;
 }
 
-/// Renders one scene of the G1 comparison with shading and quadric-g1 in turn, each iteration
-/// both, and keeps each model's fastest render: other processes on a shared machine only slow a
-/// render down, and taking turns exposes both models to the same disturbances.
-void compareG1(benchmark::State& state, const G1Scene& scene) {
-  std::array<BuiltScene, 2>& built = g1Built(scene);
-  std::array<double, 2> best = {kInfinity, kInfinity};
+/// Renders one scene with shading and every compared model in turn, each iteration all of
+/// them, and keeps each model's fastest render: other processes on a shared machine only slow a
+/// render down, and taking turns exposes every model to the same disturbances.
+void compareRatios(benchmark::State& state, const RatioScene& scene) {
+  std::vector<BuiltScene>& built = ratioBuilt(scene);
+  std::vector<double> best(built.size(), kInfinity);
   for (auto _ : state)
-    for (size_t m = 0; m < 2; ++m) {
+    for (size_t m = 0; m < built.size(); ++m) {
       const RenderResult result = render(*built[m].scene, *built[m].integrator, built[m].options);
       benchmark::DoNotOptimize(result.image.pixels.data());
       best[m] = std::min(best[m], result.stats.seconds);
     }
   // The benchmark library may call this more than once per scene: keep the fastest of all.
-  auto [it, inserted] = g1Seconds().try_emplace(scene.name, best);
+  auto [it, inserted] = ratioSeconds().try_emplace(scene.name, best);
   if (!inserted)
-    for (size_t m = 0; m < 2; ++m) it->second[m] = std::min(it->second[m], best[m]);
+    for (size_t m = 0; m < best.size(); ++m) it->second[m] = std::min(it->second[m], best[m]);
+  const std::vector<RatioModel> models = ratioModels();
   state.counters["shading_s"] = best[0];
-  state.counters["g1_s"] = best[1];
-  state.counters["g1/shading"] = best[1] / best[0];
+  for (size_t m = 0; m < models.size(); ++m)
+    state.counters[std::string(models[m].name) + "/shading"] = best[m + 1] / best[0];
 }
 
-/// quadric-g1's render time against shading's, scene by scene.
-void printG1Summary(const std::vector<G1Scene>& scenes) {
+/// Every compared model's render time against shading's, scene by scene, beside its target;
+/// then how flat each model's ratio stays across the icosphere series.
+void printRatioSummary(const std::vector<RatioScene>& scenes) {
+  const std::vector<RatioModel> models = ratioModels();
   bool header = false;
-  for (const G1Scene& scene : scenes) {
-    const auto it = g1Seconds().find(scene.name);
-    if (it == g1Seconds().end()) continue;
-    if (!header)
+  std::vector<double> seriesLow(models.size(), kInfinity), seriesHigh(models.size(), 0.0);
+  std::vector<int> seriesCount(models.size(), 0);
+  for (const RatioScene& scene : scenes) {
+    const auto it = ratioSeconds().find(scene.name);
+    if (it == ratioSeconds().end()) continue;
+    if (!header) {
       fmt::print(
-          "\nquadric-g1 against shading at {}x{}, {} spp, {} threads (fastest of each, taking "
-          "turns):\n",
-          kResolution, kResolution, kSamplesPerPixel, kThreads);
+          "\nrender time against shading at {}x{}, {} spp, {} threads (fastest of each, taking "
+          "turns; target in brackets):\n  {:<16} {:>10}",
+          kResolution, kResolution, kSamplesPerPixel, kThreads, "scene", "shading");
+      for (const RatioModel& m : models)
+        fmt::print("  {:>30}", fmt::format("{} (<= {})", m.name, m.target));
+      fmt::print("\n");
+    }
     header = true;
-    const auto& [shading, g1] = it->second;
-    fmt::print("  {:<16} shading {:8.3f} s  quadric-g1 {:8.3f} s  {:6.2f}x\n", scene.name, shading,
-               g1, g1 / shading);
+    const std::vector<double>& s = it->second;
+    fmt::print("  {:<16} {:8.3f} s", scene.name, s[0]);
+    for (size_t m = 0; m < models.size(); ++m) {
+      const double ratio = s[m + 1] / s[0];
+      fmt::print("  {:>30}", fmt::format("{:.3f} s {:5.2f}x {:<6}", s[m + 1], ratio,
+                                         ratio <= models[m].target ? "pass" : "MISSED"));
+      if (scene.icosphereLevel >= 0) {
+        seriesLow[m] = std::min(seriesLow[m], ratio);
+        seriesHigh[m] = std::max(seriesHigh[m], ratio);
+        ++seriesCount[m];
+      }
+    }
+    fmt::print("\n");
+  }
+  for (size_t m = 0; m < models.size(); ++m) {
+    if (seriesCount[m] < 2) continue;
+    const double spread = seriesHigh[m] / seriesLow[m];
+    fmt::print(
+        "  {} over {} icosphere levels: ratio {:.2f}x to {:.2f}x, largest / smallest "
+        "{:.2f} (target <= {}): {}\n",
+        models[m].name, seriesCount[m], seriesLow[m], seriesHigh[m], spread, kFlatSeries,
+        spread <= kFlatSeries ? "pass" : "MISSED");
   }
 }
 
@@ -339,18 +441,20 @@ int main(int argc, char** argv) {
           ->Unit(benchmark::kMillisecond)
           ->UseManualTime();
   }
-  const std::vector<G1Scene> scenes = g1Scenes();
-  for (const G1Scene& scene : scenes)
-    benchmark::RegisterBenchmark(("G1/" + scene.name).c_str(), compareG1, scene)
+  const std::vector<RatioScene> scenes = ratioScenes();
+  for (const RatioScene& scene : scenes)
+    benchmark::RegisterBenchmark(("Ratio/" + scene.name).c_str(), compareRatios, scene)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   printSummary();
-  printG1Summary(scenes);
-  g1Pair() = {};  // the Embree scenes go before main returns, not after the library's state
-  g1Key().clear();
+  printRatioSummary(scenes);
+  ratioBuiltScenes().clear();  // the Embree scenes go before main returns, not after the
+  ratioKey().clear();          // library's state
+  std::error_code ignored;
+  std::filesystem::remove_all(seriesFolder(), ignored);
   benchmark::Shutdown();
   return 0;
 }
