@@ -53,6 +53,43 @@ TEST(Accel, TriangleHitAtAnalyticT) {
   }
 }
 
+// HitNormal::Skip leaves the normal of triangle and patch hits zero and changes nothing else:
+// the same hit, t, (u, v) and point as with the normal filled, which is unit.
+TEST(Accel, SkippingTheHitNormalChangesNothingElse) {
+  enableFlushToZero();
+  TriangleMesh mesh = icosphere(2);
+  for (Vec3& p : mesh.positions) p = 0.5 * p + Vec3(2.0, 0.0, 0.0);
+  const std::vector<QuadricPatch> patches = spherePatches();
+  Accel accel;
+  const uint32_t triangles = accel.addTriangles(mesh);
+  const uint32_t quadrics = accel.addQuadricPatches(patches);
+  accel.commit();
+  Pcg32 rng(23);
+  int hitTriangles = 0, hitPatches = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 origin(1.0, 0.0, 3.0);
+    const Vec3 target(4.0 * rng.nextDouble() - 1.5, 2.0 * rng.nextDouble() - 1.0,
+                      2.0 * rng.nextDouble() - 1.0);
+    const Ray ray{origin, (target - origin).normalized()};
+    const RayHit filled = accel.intersect(ray);
+    const RayHit skipped = accel.intersect(ray, Accel::HitNormal::Skip);
+    ASSERT_EQ(filled.valid(), skipped.valid());
+    if (!filled.valid()) continue;
+    hitTriangles += filled.geometry == triangles;
+    hitPatches += filled.geometry == quadrics;
+    EXPECT_EQ(skipped.geometry, filled.geometry);
+    EXPECT_EQ(skipped.primitive, filled.primitive);
+    EXPECT_EQ(skipped.t, filled.t);
+    EXPECT_EQ(skipped.u, filled.u);
+    EXPECT_EQ(skipped.v, filled.v);
+    EXPECT_EQ(skipped.point, filled.point);
+    EXPECT_EQ(skipped.geometricNormal, Vec3::Zero());
+    EXPECT_NEAR(filled.geometricNormal.norm(), 1.0, 1e-12);
+  }
+  EXPECT_GT(hitTriangles, 200);
+  EXPECT_GT(hitPatches, 200);
+}
+
 TEST(Accel, RobustRaysThroughSharedEdgesAndVerticesNeverMiss) {
   enableFlushToZero();
   for (int level = 0; level <= 3; ++level) {
