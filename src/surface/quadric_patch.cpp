@@ -48,9 +48,6 @@ bool nearestRoot(const QuadricPatch& patch, const Vec3& o, const Vec3& d, double
     // The box first: the cheapest test, and next to q in the record.
     if ((p.array() < patch.bounds.lo.array()).any() || (p.array() > patch.bounds.hi.array()).any())
       continue;
-    if (patch.facing != Vec3::Zero() &&
-        !(patch.orientation * quadricGradient(q, p).dot(patch.facing) > 0.0))
-      continue;
     if (!patch.inside(p)) continue;
     if (!accept(p)) continue;
     tHit = t;
@@ -67,23 +64,7 @@ bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3&
 }
 
 bool insideQuadric(const QuadricPatch& patch, const Vec3& p) {
-  const QuadricCoeffs& q = patch.q;
-  const double c = patch.orientation * evalQuadric(q, p);
-  if (patch.facing == Vec3::Zero()) return c < 0.0;
-  // orientation·q(p + λ n) = a λ² + b λ + c; its rising root is (−b + √(b²−4ac)) / 2a.
-  const Vec3& n = patch.facing;
-  const double a =
-      patch.orientation * (q[0] * n.x() * n.x() + q[1] * n.y() * n.y() + q[2] * n.z() * n.z() +
-                           q[3] * n.x() * n.y() + q[4] * n.x() * n.z() + q[5] * n.y() * n.z());
-  const double b = patch.orientation * quadricGradient(q, p).dot(n);
-  const double disc = b * b - 4.0 * a * c;
-  if (!(disc >= 0.0)) return a < 0.0;  // no crossing: the sign is a's everywhere on the line
-  const double root = std::sqrt(disc);
-  // The rising root ahead of p (λ > 0), computed without cancellation: with b ≤ 0 as
-  // (−b + √disc) / 2a, otherwise as the equal 2c / (−b − √disc).
-  if (b <= 0.0) return a != 0.0 ? (-b + root) / a > 0.0 : c < 0.0;
-  const double den = -b - root;  // < 0
-  return den != 0.0 ? 2.0 * c / den > 0.0 : c < 0.0;
+  return patch.orientation * evalQuadric(patch.q, p) < 0.0;
 }
 
 bool betweenSheetAndBase(const QuadricPatch& patch, const Vec3& p, int skipPlane) {

@@ -114,7 +114,6 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
   if (!(std::abs(facing) > 0.0) || !std::isfinite(facing)) return false;
   patch.q = q;
   patch.orientation = facing < 0.0 ? -1.0 : 1.0;
-  patch.facing = Vec3::Zero();
   const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
   patch.base << n, -n.dot(centre);
   const double scale = m.meanEdgeLength(t);
@@ -257,7 +256,6 @@ void RobustImplicitModel::makeFlat(size_t t, double reach, ConvexCell& cell) {
   const double tolerance = 1e-10 * (scale + centre.norm());
   frame.flat = true;
   frame.blend = 1.0;
-  patch.facing = Vec3::Zero();
   patch.orientation = 1.0;
   patch.q.fill(0.0);
   // A triangle without area (or extent) has no plane: it stands for nothing (no base), and

@@ -47,7 +47,6 @@ Record record(const SurfaceModel& model) {
     add(r, p.bounds.hi);
     r.numbers.push_back(p.orientation);
     r.numbers.insert(r.numbers.end(), p.base.data(), p.base.data() + 4);
-    add(r, p.facing);
     r.integers.insert(r.integers.end(),
                       {p.planeCount, p.joins[0], p.joins[1], p.joinPlanes[0], p.joinPlanes[1]});
   }

@@ -447,8 +447,8 @@ TEST(RobustImplicitModel, SmoothMeshesNeedNoFlatFallback) {
     EXPECT_EQ(RobustImplicitModel(builtin(spec)).flatCount(), 0u) << spec;
 }
 
-TEST(QuadricPatchFacing, KeepsOneSheetAndItsInside) {
-  // z² − ε² = 0: two planes z = ±ε. Facing +z keeps z = +ε (its outward gradient is +z).
+TEST(QuadricPatch, NearestRootOfEitherSheetAndInsideByOrientation) {
+  // z² − ε² = 0: two planes z = ±ε; the nearer one is hit from either side.
   const double eps = 0.1;
   QuadricPatch p;
   p.q = {0, 0, 1, 0, 0, 0, 0, 0, 0, -eps * eps};
@@ -456,24 +456,19 @@ TEST(QuadricPatchFacing, KeepsOneSheetAndItsInside) {
   p.bounds.extend(Vec3(1, 1, 1));
   double t = 0;
   ASSERT_TRUE(intersectQuadricPatch(p, Vec3(0, 0, -0.5), Vec3(0, 0, 1), 0.0, 1.0, t));
-  EXPECT_NEAR(t, 0.5 - eps, 1e-15);  // without facing, the lower plane comes first
-  p.facing = Vec3(0, 0, 1);
-  ASSERT_TRUE(intersectQuadricPatch(p, Vec3(0, 0, -0.5), Vec3(0, 0, 1), 0.0, 1.0, t));
-  EXPECT_NEAR(t, 0.5 + eps, 1e-15);
+  EXPECT_NEAR(t, 0.5 - eps, 1e-15);
   ASSERT_TRUE(intersectQuadricPatch(p, Vec3(0, 0, 0.5), Vec3(0, 0, -1), 0.0, 1.0, t));
   EXPECT_NEAR(t, 0.5 - eps, 1e-15);
-  // Inside is below the kept sheet, whatever the dropped one says.
-  for (double z : {-0.5, -0.2, -0.05, 0.0, 0.05, 0.099})
+  // Past the box, no root counts.
+  EXPECT_FALSE(intersectQuadricPatch(p, Vec3(2, 0, -0.5), Vec3(0, 0, 1), 0.0, 1.0, t));
+  // Inside is where orientation·q < 0: between the planes, or outside them when turned over.
+  for (double z : {-0.099, -0.05, 0.0, 0.05, 0.099})
     EXPECT_TRUE(insideQuadric(p, Vec3(0.3, -0.2, z))) << z;
-  for (double z : {0.101, 0.2, 0.5}) EXPECT_FALSE(insideQuadric(p, Vec3(0.3, -0.2, z))) << z;
-  // A sphere (one sheet facing +z on its upper half): inside is inside.
-  QuadricPatch s;
-  s.q = {1, 1, 1, 0, 0, 0, 0, 0, 0, -1};
-  s.facing = Vec3(0, 0, 1);
-  EXPECT_TRUE(insideQuadric(s, Vec3(0.2, 0.1, 0.5)));
-  EXPECT_TRUE(insideQuadric(s, Vec3(0.2, 0.1, -0.5)));
-  EXPECT_FALSE(insideQuadric(s, Vec3(0.2, 0.1, 1.5)));
-  EXPECT_FALSE(insideQuadric(s, Vec3(3, 0, 0)));  // the line along +z misses the sphere
+  for (double z : {-0.5, -0.101, 0.101, 0.5})
+    EXPECT_FALSE(insideQuadric(p, Vec3(0.3, -0.2, z))) << z;
+  p.orientation = -1.0;
+  EXPECT_FALSE(insideQuadric(p, Vec3(0.3, -0.2, 0.0)));
+  EXPECT_TRUE(insideQuadric(p, Vec3(0.3, -0.2, 0.5)));
 }
 
 TEST(RobustImplicitModel, DegenerateTrianglesGiveFiniteOutput) {

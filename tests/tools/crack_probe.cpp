@@ -5,7 +5,7 @@
 // crackRate does, and for each cracked line prints its model crossings (patch or bridge, t,
 // entering) beside its exact crossings of the flat triangles, and the mesh feature (vertex,
 // edge, face) nearest to the first crossing the two disagree on. For every quadric root near
-// that point it says which test kept or dropped it (edge plane, slab, bounds, facing, bridge
+// that point it says which test kept or dropped it (edge plane, slab, bounds, bridge
 // classification). It also reports hits farther than F mean edge lengths from their triangles
 // (stray sheets), the widest gaps between neighbours' boundaries along each edge (in units of
 // crackRate's merge distance), the lines whose crossings do not alternate between entering and
@@ -131,9 +131,6 @@ std::vector<RootNote> explainRoots(const RobustImplicitModel& model, size_t i, c
     }
     if ((p.array() < patch.bounds.lo.array()).any() || (p.array() > patch.bounds.hi.array()).any())
       why += " out:bounds", reasons += " bounds";
-    if (!patch.isBridge() && patch.facing != Vec3::Zero() &&
-        !(patch.orientation * quadricGradient(q, p).dot(patch.facing) > 0.0))
-      why += " out:facing", reasons += " facing";
     if (patch.isBridge() && !bridgeCovers(all, patch, p))
       why += " out:same-side", reasons += " same-side";
     notes.push_back({s, reasons, patch.isBridge()});

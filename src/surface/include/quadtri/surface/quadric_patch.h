@@ -33,8 +33,7 @@ struct QuadricPatch {
   static constexpr int kMaxPlanes = 6;
   // The fields are in the order a ray test reads them, so that a test of an ordinary patch
   // touches one contiguous run of the record: which kind of primitive it is, the quadric, its
-  // box, its orientation and facing, then as many planes as it has. (Order only: the record's
-  // size is unchanged.)
+  // box, then as many planes as it has.
 
   /// For an edge bridge: the indices (in the same primitive array) of the two patches it joins;
   /// -1 for an ordinary patch. A bridge's q is the shared edge plane (linear, gradient into the
@@ -50,10 +49,6 @@ struct QuadricPatch {
   QuadricCoeffs q{};
   Bounds3 bounds;
   double orientation = 1.0;
-  /// Where non-zero, only the sheet facing this way is kept: points where the oriented gradient
-  /// has a positive component along it (one sheet of a quadric that folds back within the
-  /// clip planes, such as a thin hyperboloid hugging its triangle).
-  Vec3 facing = Vec3::Zero();
   /// (n, d) with inside n·x + d >= 0 (Eigen leaves `{}` uninitialised: zero them explicitly).
   std::array<Vec4, kMaxPlanes> planes = [] {
     std::array<Vec4, kMaxPlanes> zero;
@@ -82,9 +77,7 @@ bool intersectQuadricPatch(const QuadricPatch& patch, const Vec3& o, const Vec3&
                            double tmax, double& tHit);
 
 /// True where p lies inside the solid that patch bounds: orientation·q(p) < 0 (the oriented
-/// gradient points outward). With a `facing` direction, only the kept sheet counts: p is inside
-/// when the line from p along `facing` crosses the kept sheet (the root where orientation·q
-/// increases) ahead of p, so the sheet the patch drops changes nothing.
+/// gradient points outward).
 bool insideQuadric(const QuadricPatch& patch, const Vec3& p);
 
 /// For a patch with a `base`: p lies in the patch's cell (every plane but `skipPlane`, which
