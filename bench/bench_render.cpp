@@ -46,6 +46,7 @@
 #include "quadtri/render/camera.h"
 #include "quadtri/render/render_scene.h"
 #include "quadtri/render/renderer.h"
+#include "quadtri/scene/render_settings.h"
 #include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
 
@@ -232,19 +233,7 @@ constexpr int kLastIcosphereLevel = 8;  // 1,310,720 triangles
 /// The models QUADTRI_RATIO_MODELS names (comma-separated), or all of kRatioModels.
 std::vector<RatioModel> ratioModels() {
   const char* chosen = std::getenv("QUADTRI_RATIO_MODELS");
-  std::vector<std::string> names;
-  if (chosen) {
-    std::string name;
-    for (const char* c = chosen;; ++c) {
-      if (*c == ',' || *c == '\0') {
-        names.push_back(name);
-        name.clear();
-        if (*c == '\0') break;
-      } else {
-        name.push_back(*c);
-      }
-    }
-  }
+  const std::vector<std::string> names = chosen ? splitList(chosen) : std::vector<std::string>{};
   std::vector<RatioModel> models;
   for (const RatioModel& m : kRatioModels)
     if (!chosen || std::find(names.begin(), names.end(), m.name) != names.end())

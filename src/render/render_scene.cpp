@@ -241,10 +241,7 @@ Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
   const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
   const Vec3 end = target + side * floatErrorOffset(maxAbs(target)) * targetNormal;
   const Vec3 toEnd = end - ray.origin;
-  // safeNormalized(toEnd) and |toEnd| from one square root.
-  const double length = toEnd.norm();
-  ray.direction = length > 0.0 && std::isfinite(length) ? Vec3(toEnd / length) : Vec3(0, 0, 1);
-  ray.tfar = length;
+  ray.direction = safeNormalized(toEnd, ray.tfar);
   return ray;
 }
 

@@ -18,11 +18,17 @@ using Mat4 = Eigen::Matrix4d;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-/// v/|v|, or `fallback` when |v| is zero or not finite (never returns NaN).
+/// v/|v|, or `fallback` when |v| is zero or not finite (never returns NaN); |v| goes to `length`
+/// (one square root for both).
+inline Vec3 safeNormalized(const Vec3& v, double& length, const Vec3& fallback = Vec3(0, 0, 1)) {
+  length = v.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return fallback;
+  return v / length;
+}
+/// The same without the length.
 inline Vec3 safeNormalized(const Vec3& v, const Vec3& fallback = Vec3(0, 0, 1)) {
-  const double len = v.norm();
-  if (!(len > 0.0) || !std::isfinite(len)) return fallback;
-  return v / len;
+  double length;
+  return safeNormalized(v, length, fallback);
 }
 
 /// Angle between two vectors in degrees, robust near 0 and 180 (atan2 of |a×b| and a·b).
