@@ -7,291 +7,17 @@
 #include <cmath>
 #include <string>
 
+#include "accel_callbacks.h"
 #include "quadtri/math/error.h"
-#include "quadtri/math/float_round.h"
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
-#include "quadtri/surface/bezier_intersect.h"
 
 namespace quadtri {
 namespace {
 
-constexpr unsigned kInvalidId = RTC_INVALID_GEOMETRY_ID;
 // A Bézier piece within this share of its box's diagonal of its corner triangle is traced as
 // that triangle (far below what a float hit resolves).
 constexpr double kFlatPieceTolerance = 1e-12;
-
-// What the patch callbacks need: the patches and how much to grow their bounds. The double ray
-// differs from Embree's float copy by about 6e-8 of the distance travelled, so boxes grow by
-// 1e-5 of the geometry's extent to never cull a hit of the double ray.
-struct PatchGeometry {
-  const std::vector<QuadricPatch>* patches = nullptr;
-  double margin = 0.0;
-};
-
-// The same for Bézier pieces. Rendering structures trace `subPatches` (regions of the pieces,
-// the primitives of Embree's user geometry, each hit reported as its piece's); those that collect
-// every hit (crack rates) have none and trace whole pieces, one primitive each.
-// Rendering structures also trace the pieces that are their own corner triangle, linearly
-// parametrised (BezierTriangle::isAffine: a flat face with one normal), as native triangles of a
-// geometry of their own, `flatGeometry`: triangle i is piece flatPieces[i], its Embree (u, v)
-// the piece's. Accel::intersect reports its hits as the pieces' own.
-struct BezierGeometry {
-  const std::vector<BezierTriangle>* pieces = nullptr;
-  bool tracesSubPatches = false;
-  std::vector<BezierSubPatch> subPatches;
-  unsigned id = kInvalidId, flatGeometry = kInvalidId;
-  std::vector<uint32_t> flatPieces;
-  double margin = 0.0;
-};
-
-// Embree's context extended with the double-precision ray, so quadric patches are intersected
-// in double while Embree traverses with floats. Embree hands this pointer to the callbacks.
-struct TraceContext {
-  RTCIntersectContext embree;  // first member: the callbacks cast the context back
-  const Ray* ray = nullptr;
-  double tnear = 0.0;         // the ray's tnear clamped to >= 0, as Embree clamps its copy
-  double patchT = kInfinity;  // the nearest patch hit so far, in double
-  unsigned patchGeometry = kInvalidId, patchPrimitive = kInvalidId;
-  const std::vector<QuadricPatch>* patches = nullptr;  // those of the nearest patch hit
-  // Or the pieces of the nearest hit, when it is a Bézier piece, and its (u, v).
-  const std::vector<BezierTriangle>* pieces = nullptr;
-  double pieceU = 0.0, pieceV = 0.0;
-  std::vector<RayHit>* hits = nullptr;  // set by allHits(): record every hit, keep none
-};
-
-RayHit patchHit(const std::vector<QuadricPatch>& patches, const Ray& ray, double t,
-                unsigned geometry, unsigned primitive, bool withNormal = true) {
-  RayHit hit;
-  hit.t = t;
-  hit.geometry = geometry;
-  hit.primitive = primitive;
-  if (withNormal)
-    hit.geometricNormal =
-        safeNormalized(primitiveNormal(patches, primitive, ray.origin + t * ray.direction));
-  return hit;
-}
-
-// allHits(): both roots of the patch, recorded without shortening the ray.
-void collectPatchHits(const std::vector<QuadricPatch>& patches, TraceContext& ctx,
-                      unsigned geometry, unsigned primitive) {
-  double tmin = ctx.tnear, t;
-  while (intersectPrimitive(patches, primitive, ctx.ray->origin, ctx.ray->direction, tmin,
-                            ctx.ray->tfar, t)) {
-    ctx.hits->push_back(patchHit(patches, *ctx.ray, t, geometry, primitive));
-    tmin = t;
-  }
-}
-
-// allHits() for triangles: the context filter sees each candidate (its t in the ray's tfar),
-// records it and rejects it so that traversal goes on.
-void collectTriangleHit(const RTCFilterFunctionNArguments* args) {
-  auto* ctx = reinterpret_cast<TraceContext*>(args->context);
-  RayHit hit;
-  hit.t = RTCRayN_tfar(args->ray, 1, 0);
-  hit.geometry = RTCHitN_geomID(args->hit, 1, 0);
-  hit.primitive = RTCHitN_primID(args->hit, 1, 0);
-  hit.u = RTCHitN_u(args->hit, 1, 0);
-  hit.v = RTCHitN_v(args->hit, 1, 0);
-  hit.geometricNormal = safeNormalized(Vec3(
-      RTCHitN_Ng_x(args->hit, 1, 0), RTCHitN_Ng_y(args->hit, 1, 0), RTCHitN_Ng_z(args->hit, 1, 0)));
-  ctx->hits->push_back(hit);
-  args->valid[0] = 0;
-}
-
-// Embree's float box holding b grown by `margin`.
-void writeBounds(const Bounds3& b, double margin, RTCBounds* o) {
-  o->lower_x = floatDown(b.lo.x() - margin);
-  o->lower_y = floatDown(b.lo.y() - margin);
-  o->lower_z = floatDown(b.lo.z() - margin);
-  o->upper_x = floatUp(b.hi.x() + margin);
-  o->upper_y = floatUp(b.hi.y() + margin);
-  o->upper_z = floatUp(b.hi.z() + margin);
-}
-
-void patchBounds(const RTCBoundsFunctionArguments* args) {
-  acquireEdge(args->geometryUserPtr);  // Accel::commit's release (ThreadSanitizer)
-  const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
-  writeBounds((*g->patches)[args->primID].bounds, g->margin, args->bounds_o);
-  releaseEdge(&g->margin);
-}
-
-// Accel traces single rays (rtcIntersect1/rtcOccluded1), so every callback sees N == 1.
-void intersectPatch(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  auto* ctx = reinterpret_cast<TraceContext*>(args->context);
-  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const std::vector<QuadricPatch>& patches =
-      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
-  if (ctx->hits) return collectPatchHits(patches, *ctx, args->geomID, args->primID);
-  // While a patch is the nearest hit (or nothing is: both ids are then invalid and patchT is
-  // the ray's tfar) its exact t bounds the search; after a triangle took over, its float t does.
-  const bool patchIsNearest =
-      rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
-  const double tmax =
-      patchIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
-  double t;
-  if (!intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                          tmax, t))
-    return;
-  ctx->patchT = t;
-  ctx->patchGeometry = args->geomID;
-  ctx->patchPrimitive = args->primID;
-  ctx->patches = &patches;
-  ctx->pieces = nullptr;
-  rayhit->ray.tfar = floatDown(t);
-  rayhit->hit.geomID = args->geomID;
-  rayhit->hit.primID = args->primID;
-  rayhit->hit.instID[0] = args->context->instID[0];
-  rayhit->hit.u = rayhit->hit.v = 0.0f;
-}
-
-void occludedPatch(const RTCOccludedFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
-  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  const std::vector<QuadricPatch>& patches =
-      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
-  double t;
-  if (intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                         ctx->ray->tfar, t))
-    ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
-}
-
-RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geometry,
-                 unsigned primitive) {
-  RayHit hit;
-  hit.t = h.t;
-  hit.geometry = geometry;
-  hit.primitive = primitive;
-  hit.u = h.u;
-  hit.v = h.v;
-  piece.positionAndNormal(h.u, h.v, hit.point, hit.geometricNormal);
-  // Where ∂u × ∂v vanishes (a collapsed corner), the normal a hair towards the centre.
-  if (hit.geometricNormal.squaredNorm() == 0.0)
-    hit.geometricNormal =
-        piece.normal(h.u + 1e-7 * (1.0 / 3.0 - h.u), h.v + 1e-7 * (1.0 / 3.0 - h.v));
-  return hit;
-}
-
-// Embree's hit of a flat piece's triangle, again in double precision (Möller–Trumbore on the
-// double ray), its (u, v) kept in the triangle; Embree's float one where the ray runs in the
-// triangle's plane.
-BezierHit flatPieceHit(const BezierTriangle& piece, const Ray& ray, const RTCRayHit& rayhit) {
-  BezierHit h{double(rayhit.ray.tfar), double(rayhit.hit.u), double(rayhit.hit.v)};
-  const Vec3& p0 = piece.at(4, 0, 0);
-  const Vec3 e1 = piece.at(0, 4, 0) - p0, e2 = piece.at(0, 0, 4) - p0;
-  const Vec3 pv = ray.direction.cross(e2);
-  const double det = e1.dot(pv);
-  if (!(std::abs(det) > 0.0)) return h;
-  const Vec3 tv = ray.origin - p0;
-  const Vec3 qv = tv.cross(e1);
-  const double t = e2.dot(qv) / det;
-  double u = tv.dot(pv) / det, v = ray.direction.dot(qv) / det;
-  if (!std::isfinite(t) || !std::isfinite(u) || !std::isfinite(v)) return h;
-  u = std::clamp(u, 0.0, 1.0);
-  v = std::clamp(v, 0.0, 1.0 - u);
-  return {t, u, v};
-}
-
-void bezierBounds(const RTCBoundsFunctionArguments* args) {
-  acquireEdge(args->geometryUserPtr);
-  const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
-  writeBounds(g->tracesSubPatches ? g->subPatches[args->primID].bounds()
-                                  : (*g->pieces)[args->primID].bounds,
-              g->margin, args->bounds_o);
-  releaseEdge(&g->margin);
-}
-
-// The (u, v) the ray leaves the piece from, when it was spawned from a hit of that piece.
-const Vec2* leavesFrom(const Ray& ray, unsigned geometry, unsigned piece) {
-  return ray.fromGeometry == geometry && ray.fromPrimitive == piece ? &ray.fromUV : nullptr;
-}
-
-void intersectBezier(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  auto* ctx = reinterpret_cast<TraceContext*>(args->context);
-  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
-  const std::vector<BezierTriangle>& pieces = *g->pieces;
-  if (ctx->hits) {  // allHits(): every hit of the piece, without shortening the ray
-    const BezierTriangle& piece = pieces[args->primID];
-    thread_local std::vector<BezierHit> found;
-    found.clear();
-    intersectBezierTriangleAll(piece, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                               ctx->ray->tfar, found);
-    for (const BezierHit& h : found)
-      ctx->hits->push_back(bezierHit(piece, h, args->geomID, args->primID));
-    return;
-  }
-  // As intersectPatch: the nearest user-geometry hit so far bounds the search exactly.
-  const bool userIsNearest =
-      rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
-  const double tmax = userIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
-  BezierHit h;
-  unsigned primitive = args->primID;
-  if (!g->tracesSubPatches) {
-    if (!intersectBezierTriangle(pieces[primitive], ctx->ray->origin, ctx->ray->direction,
-                                 ctx->tnear, tmax, h))
-      return;
-  } else {
-    const BezierSubPatch& sub = g->subPatches[primitive];
-    primitive = sub.piece;
-    const BezierTriangle& piece = pieces[primitive];
-    if (!intersectBezierSubPatch(piece, sub, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                                 tmax, h, leavesFrom(*ctx->ray, args->geomID, primitive)))
-      return;
-  }
-  ctx->patchT = h.t;
-  ctx->patchGeometry = args->geomID;
-  ctx->patchPrimitive = primitive;
-  ctx->patches = nullptr;
-  ctx->pieces = &pieces;
-  ctx->pieceU = h.u;
-  ctx->pieceV = h.v;
-  rayhit->ray.tfar = floatDown(h.t);
-  rayhit->hit.geomID = args->geomID;
-  rayhit->hit.primID = primitive;  // the piece's index, also for a sub-patch
-  rayhit->hit.instID[0] = args->context->instID[0];
-  rayhit->hit.u = float(h.u);
-  rayhit->hit.v = float(h.v);
-}
-
-void occludedBezier(const RTCOccludedFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
-  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
-  const std::vector<BezierTriangle>& pieces = *g->pieces;
-  bool hit;
-  if (!g->tracesSubPatches) {
-    hit = occludesBezierTriangle(pieces[args->primID], ctx->ray->origin, ctx->ray->direction,
-                                 ctx->tnear, ctx->ray->tfar);
-  } else {
-    const BezierSubPatch& sub = g->subPatches[args->primID];
-    const BezierTriangle& piece = pieces[sub.piece];
-    hit = occludesBezierSubPatch(piece, sub, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                                 ctx->ray->tfar, leavesFrom(*ctx->ray, args->geomID, sub.piece));
-  }
-  if (hit) ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
-}
-
-void fillRay(const Ray& ray, RTCRay& out) {
-  out.org_x = float(ray.origin.x());
-  out.org_y = float(ray.origin.y());
-  out.org_z = float(ray.origin.z());
-  out.dir_x = float(ray.direction.x());
-  out.dir_y = float(ray.direction.y());
-  out.dir_z = float(ray.direction.z());
-  out.tnear = floatDown(std::max(ray.tnear, 0.0));
-  out.tfar = floatUp(ray.tfar);
-  out.time = 0.0f;
-  out.mask = ~0u;
-  out.id = 0;
-  out.flags = 0;
-}
-
-// Embree reports errors through a callback from inside its C API, on the thread whose call
 // failed; throwing across it is not allowed, so each thread keeps its first message until
 // Accel::Impl::check() throws it once the call has returned.
 thread_local std::string embreeError;
@@ -322,10 +48,11 @@ struct Accel::Impl {
   RTCScene scene = nullptr;
   bool committed = false;
   size_t bytes = 0;
-  std::vector<std::unique_ptr<PatchGeometry>> patchGeometries;  // stable user pointers
-  std::vector<std::unique_ptr<BezierGeometry>> bezierGeometries;
+  std::vector<std::unique_ptr<accel_detail::PatchGeometry>>
+      patchGeometries;  // stable user pointers
+  std::vector<std::unique_ptr<accel_detail::BezierGeometry>> bezierGeometries;
   // By geometry id: the Bézier geometry whose flat pieces that native geometry holds.
-  std::vector<const BezierGeometry*> flatOwner;
+  std::vector<const accel_detail::BezierGeometry*> flatOwner;
   // The triangle geometries' vertex and index buffers (Embree reads them in place).
   std::vector<std::vector<float>> vertexBuffers;
   std::vector<std::vector<uint32_t>> indexBuffers;
@@ -442,12 +169,12 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
              side);
     extent = std::max({extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
   }
-  auto user = std::make_unique<PatchGeometry>();
+  auto user = std::make_unique<accel_detail::PatchGeometry>();
   user->patches = &patches;
   user->margin = 1e-5 * extent;
-  const uint32_t id =
-      impl_->attachUserGeometry(patches.size(), user.get(), &patchBounds, &intersectPatch,
-                                &occludedPatch, "attaching the quadric patches");
+  const uint32_t id = impl_->attachUserGeometry(
+      patches.size(), user.get(), &accel_detail::patchBounds, &accel_detail::intersectPatch,
+      &accel_detail::occludedPatch, "attaching the quadric patches");
   impl_->patchGeometries.push_back(std::move(user));
   impl_->bytes += patches.size() * sizeof(QuadricPatch);
   return id;
@@ -467,7 +194,7 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
         fail("Bézier piece {}: a control point is not finite or outside the piece's bounds", i);
     extent = std::max({extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
   }
-  auto user = std::make_unique<BezierGeometry>();
+  auto user = std::make_unique<accel_detail::BezierGeometry>();
   user->pieces = &pieces;
   user->margin = 1e-5 * extent;
   if (!impl_->options.collectHits) {
@@ -482,9 +209,9 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
                   [&](const BezierSubPatch& sub) { return flat[sub.piece] != 0; });
   }
   const size_t primitives = user->tracesSubPatches ? user->subPatches.size() : pieces.size();
-  const uint32_t id =
-      impl_->attachUserGeometry(primitives, user.get(), &bezierBounds, &intersectBezier,
-                                &occludedBezier, "attaching the Bézier pieces");
+  const uint32_t id = impl_->attachUserGeometry(
+      primitives, user.get(), &accel_detail::bezierBounds, &accel_detail::intersectBezier,
+      &accel_detail::occludedBezier, "attaching the Bézier pieces");
   user->id = id;
   impl_->bytes +=
       pieces.size() * sizeof(BezierTriangle) + user->subPatches.size() * sizeof(BezierSubPatch);
@@ -525,31 +252,32 @@ void Accel::commit() {
 
 RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
   impl_->requireCommitted("intersect");
-  TraceContext ctx;
+  accel_detail::TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
   ctx.ray = &ray;
   ctx.tnear = std::max(ray.tnear, 0.0);
   ctx.patchT = ray.tfar;
   RTCRayHit rayhit;
-  fillRay(ray, rayhit.ray);
-  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = kInvalidId;
+  accel_detail::fillRay(ray, rayhit.ray);
+  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
   rtcIntersect1(impl_->scene, &ctx.embree, &rayhit);
   RayHit hit;
-  if (rayhit.hit.geomID == kInvalidId) return hit;
+  if (rayhit.hit.geomID == accel_detail::kInvalidId) return hit;
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive &&
       ctx.pieces)
-    return bezierHit((*ctx.pieces)[rayhit.hit.primID],
-                     BezierHit{ctx.patchT, ctx.pieceU, ctx.pieceV}, rayhit.hit.geomID,
-                     rayhit.hit.primID);
+    return accel_detail::bezierHit((*ctx.pieces)[rayhit.hit.primID],
+                                   BezierHit{ctx.patchT, ctx.pieceU, ctx.pieceV}, rayhit.hit.geomID,
+                                   rayhit.hit.primID);
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive)
-    return patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID, rayhit.hit.primID,
-                    normal == HitNormal::Fill);
+    return accel_detail::patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID,
+                                  rayhit.hit.primID, normal == HitNormal::Fill);
   if (rayhit.hit.geomID < impl_->flatOwner.size() && impl_->flatOwner[rayhit.hit.geomID]) {
     // A flat Bézier piece traced as its triangle: the hit is the piece's, at the same (u, v).
-    const BezierGeometry& g = *impl_->flatOwner[rayhit.hit.geomID];
+    const accel_detail::BezierGeometry& g = *impl_->flatOwner[rayhit.hit.geomID];
     const uint32_t piece = g.flatPieces[rayhit.hit.primID];
-    return bezierHit((*g.pieces)[piece], flatPieceHit((*g.pieces)[piece], ray, rayhit), g.id,
-                     piece);
+    return accel_detail::bezierHit((*g.pieces)[piece],
+                                   accel_detail::flatPieceHit((*g.pieces)[piece], ray, rayhit),
+                                   g.id, piece);
   }
   hit.t = rayhit.ray.tfar;
   hit.geometry = rayhit.hit.geomID;
@@ -564,12 +292,12 @@ RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
 
 bool Accel::occluded(const Ray& ray) const {
   impl_->requireCommitted("occluded");
-  TraceContext ctx;
+  accel_detail::TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
   ctx.ray = &ray;
   ctx.tnear = std::max(ray.tnear, 0.0);
   RTCRay r;
-  fillRay(ray, r);
+  accel_detail::fillRay(ray, r);
   rtcOccluded1(impl_->scene, &ctx.embree, &r);
   return r.tfar < 0.0f;
 }
@@ -578,15 +306,15 @@ void Accel::allHits(const Ray& ray, std::vector<RayHit>& hits) const {
   impl_->requireCommitted("allHits");
   if (!impl_->options.collectHits)
     fail("allHits: the acceleration structure was built without collectHits");
-  TraceContext ctx;
+  accel_detail::TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
-  ctx.embree.filter = &collectTriangleHit;
+  ctx.embree.filter = &accel_detail::collectTriangleHit;
   ctx.ray = &ray;
   ctx.tnear = std::max(ray.tnear, 0.0);
   ctx.hits = &hits;
   RTCRayHit rayhit;
-  fillRay(ray, rayhit.ray);
-  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = kInvalidId;
+  accel_detail::fillRay(ray, rayhit.ray);
+  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
   rtcIntersect1(impl_->scene, &ctx.embree, &rayhit);
 }
 
