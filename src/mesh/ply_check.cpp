@@ -242,6 +242,7 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view byte
   if (!readHeaderLine(in, line, name, lineNo) || words(line).size() != 1 || words(line)[0] != "ply")
     fail("{}:1: expected 'ply', the first line of a PLY file", name);
   bool ended = false;
+  long objInfoLine = 0;  // an obj_info line since the last element's declaration
   while (!ended && readHeaderLine(in, line, name, ++lineNo)) {
     // The header is text; a NUL byte in it is no PLY header. Nor is another control character
     // but a tab: Assimp separates words by spaces and tabs only and ends a line at \f or NUL,
@@ -254,7 +255,14 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view byte
         fail("{}:{}: control character 0x{:02x} in the PLY header, expected text", name, lineNo,
              static_cast<unsigned char>(c));
     const std::vector<std::string_view> w = words(line);
-    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w.empty() || w[0] == "comment") continue;
+    if (w[0] == "obj_info") {
+      // Assimp skips only 'comment' lines among an element's properties: an obj_info line
+      // ends them, and it ignores the property lines after it (fuzz_ply: a list count read
+      // from a coordinate, 8 GB reserved). A property after one is refused below.
+      if (!elements.empty()) objInfoLine = lineNo;
+      continue;
+    }
     if (format.empty() && (w[0] == "element" || w[0] == "property"))
       fail("{}:{}: expected the 'format' line before '{}'", name, lineNo, w[0]);
     if (w[0] == "format") {
@@ -282,10 +290,16 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view byte
           fail("{}:{}: element '{}' is declared again (first on line {})", name, lineNo, w[1],
                e.line);
       elements.push_back({std::string(w[1]), *count, 0, lineNo, {}});
+      objInfoLine = 0;
     } else if (w[0] == "property") {
       if (elements.empty())
         fail("{}:{}: property before any element, expected 'element NAME COUNT' first", name,
              lineNo);
+      if (objInfoLine != 0)
+        fail(
+            "{}:{}: property of element '{}' after the obj_info line {}: expected its properties "
+            "together, obj_info lines before the first element or between elements",
+            name, lineNo, elements.back().name, objInfoLine);
       const bool list = w.size() >= 2 && w[1] == "list";
       if ((list && w.size() != 5) || (!list && w.size() != 3))
         fail(

@@ -214,6 +214,22 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
                                   "property float x\npro0.0perty float y\nend_header\n0\n"));
       }),
       {"not-a-property.ply:5: 'pro0.0perty float y': expected 'property'"});
+  // An obj_info line among an element's properties: Assimp ends the element there and reads
+  // the body with one property fewer (fuzz_ply: a list count of 10^9 from a coordinate).
+  const std::string objInfo =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "obj_info float y\nproperty float z\nelement face 1\n"
+      "property list uint int vertex_indices\nend_header\n";
+  const std::string objInfoBody(3 * 8 + 4 + 12, '\0');
+  expectContains(refusal([&] { inspectMeshFile(writeFile("obj-info.ply", objInfo + objInfoBody)); }),
+                 {"obj-info.ply:6: property of element 'vertex' after the obj_info line 5"});
+  // Between elements and before the first one, obj_info declares nothing to either reader.
+  const std::string between =
+      "ply\nformat ascii 1.0\nobj_info scanner 1\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nobj_info 2\nelement face 1\n"
+      "property list uchar int vertex_indices\nobj_info 3\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(loadMesh(writeFile("obj-info-ok.ply", between)).triangleCount(), 1u);
 }
 
 TEST(MeshIoCheck, BinaryStlCountsOverTheFileSizeAreRefused) {
