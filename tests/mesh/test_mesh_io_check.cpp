@@ -221,8 +221,9 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
       "obj_info float y\nproperty float z\nelement face 1\n"
       "property list uint int vertex_indices\nend_header\n";
   const std::string objInfoBody(3 * 8 + 4 + 12, '\0');
-  expectContains(refusal([&] { inspectMeshFile(writeFile("obj-info.ply", objInfo + objInfoBody)); }),
-                 {"obj-info.ply:6: property of element 'vertex' after the obj_info line 5"});
+  expectContains(
+      refusal([&] { inspectMeshFile(writeFile("obj-info.ply", objInfo + objInfoBody)); }),
+      {"obj-info.ply:6: property of element 'vertex' after the obj_info line 5"});
   // Between elements and before the first one, obj_info declares nothing to either reader.
   const std::string between =
       "ply\nformat ascii 1.0\nobj_info scanner 1\nelement vertex 3\nproperty float x\n"
