@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 
+#include "quadtri/math/error.h"
+
 namespace quadtri {
 namespace {
 
@@ -86,7 +88,7 @@ void conicExtremes(const QuadricCoeffs& q, const Vec4& plane, const Vec3& o, con
 // The polygon edges of face f (consecutive vertex pairs).
 template <typename Visit>
 void faceEdges(const ConvexCell& cell, int f, const Visit& visit) {
-  const std::vector<int>& face = cell.faces[size_t(f)];
+  const ConvexCell::Face& face = cell.faces[size_t(f)];
   for (size_t i = 0; i < face.size(); ++i)
     visit(cell.vertices[size_t(face[i])], cell.vertices[size_t(face[(i + 1) % face.size()])]);
 }
@@ -127,12 +129,13 @@ Bounds3 ConvexCell::bounds() const {
   return b;
 }
 
-ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
+ConvexCell makeConvexCell(std::span<const Vec4> planes, double tolerance) {
   ConvexCell cell;
-  cell.planes = planes;
+  if (planes.size() > ConvexCell::kMaxPlanes)
+    fail("a convex cell of {} planes, expected at most {}", planes.size(), ConvexCell::kMaxPlanes);
+  cell.planes.assign(planes.begin(), planes.end());
   cell.tolerance = tolerance;
   const size_t n = planes.size();
-  cell.vertices.reserve(2 * n);  // a simple polytope of n faces has at most 2n − 4 vertices
   const double merge2 = 16.0 * tolerance * tolerance;  // vertices within 4 tolerances are one
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
@@ -149,15 +152,15 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
         if (!allFinite(p) || !cell.contains(p)) continue;
         bool known = false;
         for (const Vec3& v : cell.vertices) known |= (v - p).squaredNorm() <= merge2;
-        if (!known) cell.vertices.push_back(p);
+        if (!known && !cell.vertices.full()) cell.vertices.push_back(p);
       }
     }
-  cell.faces.assign(n, {});
+  cell.faces.resize(n);
   for (size_t f = 0; f < n; ++f) {
-    std::vector<int>& face = cell.faces[f];
+    ConvexCell::Face& face = cell.faces[f];
     for (size_t v = 0; v < cell.vertices.size(); ++v)
       if (std::abs(planeValue(planes[f], cell.vertices[v])) <= 4.0 * tolerance)
-        face.push_back(int(v));
+        face.push_back(int8_t(v));
     if (face.size() < 3) {
       face.clear();
       continue;
@@ -168,13 +171,7 @@ ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance) {
     for (int v : face) c += cell.vertices[size_t(v)];
     c /= double(face.size());
     // Each vertex's angle about the centre, once (not per comparison).
-    std::array<double, 32> angleStore;
-    std::vector<double> angleHeap;
-    double* angle = angleStore.data();
-    if (cell.vertices.size() > angleStore.size()) {
-      angleHeap.resize(cell.vertices.size());
-      angle = angleHeap.data();
-    }
+    std::array<double, ConvexCell::kMaxVertices> angle;
     for (int v : face) {
       const Vec3 p = cell.vertices[size_t(v)] - c;
       angle[v] = pseudoAngle(p.dot(u), p.dot(w));
@@ -206,7 +203,8 @@ bool cellsOverlap(const ConvexCell& a, const ConvexCell& b, double tolerance) {
     for (size_t f = 0; f < cell->faces.size(); ++f)
       if (!cell->faces[f].empty() && separated(cell->planes[f].head<3>())) return false;
   const auto edges = [](const ConvexCell& cell) {
-    std::vector<Vec3> out;
+    // Each face's polygon edges: at most a vertex's worth per face.
+    FixedVector<Vec3, ConvexCell::kMaxPlanes * ConvexCell::kMaxVertices> out;
     for (size_t f = 0; f < cell.faces.size(); ++f)
       faceEdges(cell, int(f), [&](const Vec3& p, const Vec3& q) {
         const Vec3 d = q - p;
@@ -214,7 +212,7 @@ bool cellsOverlap(const ConvexCell& a, const ConvexCell& b, double tolerance) {
       });
     return out;
   };
-  const std::vector<Vec3> ea = edges(a), eb = edges(b);
+  const auto ea = edges(a), eb = edges(b);
   for (const Vec3& u : ea)
     for (const Vec3& w : eb) {
       const Vec3 axis = u.cross(w);
@@ -229,8 +227,8 @@ namespace {
 // surface crosses an edge of the cell, where dir·x is extremal on a face's conic, and inside
 // where ∇q ∥ dir.
 template <typename Visit>
-void extremeCandidates(const QuadricCoeffs& q, const ConvexCell& cell,
-                       const std::vector<Vec3>& dirs, const Visit& visit) {
+void extremeCandidates(const QuadricCoeffs& q, const ConvexCell& cell, std::span<const Vec3> dirs,
+                       const Visit& visit) {
   const auto keep = [&](const Vec3& p) {
     if (cell.contains(p)) visit(p);
   };
@@ -268,15 +266,15 @@ void extremeCandidates(const QuadricCoeffs& q, const ConvexCell& cell,
 
 Bounds3 quadricBoundsInCell(const QuadricCoeffs& q, const ConvexCell& cell) {
   Bounds3 box;
-  extremeCandidates(q, cell, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()},
-                    [&](const Vec3& p) { box.extend(p); });
+  const std::array<Vec3, 3> axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  extremeCandidates(q, cell, axes, [&](const Vec3& p) { box.extend(p); });
   return box;
 }
 
 std::pair<double, double> quadricRangeInCell(const QuadricCoeffs& q, const ConvexCell& cell,
                                              const Vec3& dir) {
   double lo = kInfinity, hi = -kInfinity;
-  extremeCandidates(q, cell, {dir}, [&](const Vec3& p) {
+  extremeCandidates(q, cell, std::span<const Vec3>(&dir, 1), [&](const Vec3& p) {
     lo = std::min(lo, dir.dot(p));
     hi = std::max(hi, dir.dot(p));
   });
@@ -286,7 +284,7 @@ std::pair<double, double> quadricRangeInCell(const QuadricCoeffs& q, const Conve
 Bounds3 betweenBoundsOnFace(const QuadricCoeffs& q, double sign, const Vec4& base,
                             const ConvexCell& cell, int f) {
   Bounds3 box;
-  const std::vector<int>& face = cell.faces[size_t(f)];
+  const ConvexCell::Face& face = cell.faces[size_t(f)];
   if (face.empty()) return box;
   const auto between = [&](const Vec3& p) {
     return (sign * evalQuadric(q, p) < 0.0) != (planeValue(base, p) < 0.0);
@@ -314,7 +312,7 @@ Bounds3 betweenBoundsOnFace(const QuadricCoeffs& q, double sign, const Vec4& bas
 std::pair<double, double> quadricRangeOnFace(const QuadricCoeffs& q, const ConvexCell& cell,
                                              int f) {
   double lo = kInfinity, hi = -kInfinity;
-  const std::vector<int>& face = cell.faces[size_t(f)];
+  const ConvexCell::Face& face = cell.faces[size_t(f)];
   if (face.empty()) return {lo, hi};
   const auto take = [&](const Vec3& p) {
     const double v = evalQuadric(q, p);

@@ -379,7 +379,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
         const Vec3& n = frames_[t].faceNormal;
         const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
         const double thin = 1e-6 * m.meanEdgeLength(t);
-        std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + 3);
+        FixedVector<Vec4, 5> planes(patch.planes.begin(), patch.planes.begin() + 3);
         planes.push_back(Vec4(n.x(), n.y(), n.z(), -h + thin));
         planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + thin));
         flatCores[t] = makeConvexCell(planes, cells[t].tolerance);
@@ -396,7 +396,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       const QuadricPatch& patch = patches_[t];
       const Vec3& n = frame.faceNormal;
       const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
-      std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + 3);
+      FixedVector<Vec4, 5> planes(patch.planes.begin(), patch.planes.begin() + 3);
       planes.push_back(Vec4(n.x(), n.y(), n.z(), -h - frame.coreLo));
       planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + frame.coreHi));
       cores[t] = makeConvexCell(planes, cells[t].tolerance);

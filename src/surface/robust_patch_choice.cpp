@@ -203,7 +203,8 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
       const double offset = -patch.orientation * Vec3(q[6], q[7], q[8]).dot(n) + 1e-3 * gmax;
       bool folded = false;
       if (slope.norm() > 1e-12 * gmax) {
-        std::vector<Vec4> planes(patch.planes.begin(), patch.planes.begin() + planeCount);
+        FixedVector<Vec4, ConvexCell::kMaxPlanes> planes(patch.planes.begin(),
+                                                         patch.planes.begin() + planeCount);
         planes.push_back(Vec4(slope.x(), slope.y(), slope.z(), offset) / slope.norm());
         const ConvexCell turned = makeConvexCell(planes, tolerance);
         folded = !turned.empty() && !quadricBoundsInCell(q, turned).empty();

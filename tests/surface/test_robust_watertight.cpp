@@ -52,6 +52,33 @@ TEST(ConvexCell, TriangularPrismHasItsSixVerticesAndFiveFaces) {
   EXPECT_EQ(makeConvexCell(more, 1e-12).vertices.size(), 8u);
 }
 
+TEST(ConvexCell, SevenPlanesMakeTheirPolytopeAndAnEighthIsRefused) {
+  // A unit cube with one corner cut off (x + y + z <= 2.5): 7 planes, the most a cell holds
+  // (a patch's six clip planes and the fold check's plane), 10 vertices, 2·7 − 4.
+  std::vector<Vec4> planes;
+  for (int axis = 0; axis < 3; ++axis) {
+    planes.push_back(plane(Vec3::Unit(axis), 0));
+    planes.push_back(plane(-Vec3::Unit(axis), 1));
+  }
+  planes.push_back(plane(-Vec3(1, 1, 1).normalized(), 2.5 / std::sqrt(3.0)));
+  const ConvexCell cell = makeConvexCell(planes, 1e-12);
+  EXPECT_EQ(cell.vertices.size(), 10u);
+  ASSERT_EQ(cell.faces.size(), 7u);
+  const std::vector<size_t> faceSizes = {4, 5, 4, 5, 4, 5, 3};
+  for (size_t f = 0; f < 7; ++f) EXPECT_EQ(cell.faces[f].size(), faceSizes[f]) << f;
+  EXPECT_TRUE(cell.contains(Vec3(0.5, 0.5, 0.5)));
+  EXPECT_FALSE(cell.contains(Vec3(0.9, 0.9, 0.9)));
+  // Four planes through one point (a pyramid's apex) merge into one vertex.
+  const std::vector<Vec4> pyramid = {
+      plane(Vec3(1, 0, 1).normalized(), 0), plane(Vec3(-1, 0, 1).normalized(), 0),
+      plane(Vec3(0, 1, 1).normalized(), 0), plane(Vec3(0, -1, 1).normalized(), 0),
+      plane(Vec3(0, 0, -1), 1)};
+  const ConvexCell apex = makeConvexCell(pyramid, 1e-12);
+  EXPECT_EQ(apex.vertices.size(), 5u);
+  planes.push_back(plane(Vec3(0, 0, 1), 0));
+  EXPECT_THROW(makeConvexCell(planes, 1e-12), Error);
+}
+
 TEST(ConvexCell, OverlapNeedsMoreThanTouching) {
   const ConvexCell a = boxCell(Vec3(0, 0, 0), Vec3(1, 1, 1));
   EXPECT_TRUE(cellsOverlap(a, boxCell(Vec3(0.5, 0.5, 0.5), Vec3(2, 2, 2)), 1e-12));

@@ -2,8 +2,10 @@
 // checks of a quadric on it (DESIGN.md §3, findings on §4.3).
 #pragma once
 
+#include <span>
 #include <vector>
 
+#include "quadtri/math/fixed_vector.h"
 #include "quadtri/math/vec.h"
 #include "quadtri/surface/quadric_patch.h"
 
@@ -12,10 +14,23 @@ namespace quadtri {
 /// The convex polytope {x : n_i·x + d_i >= 0 for every plane i}, as its vertices and, per plane,
 /// the polygon of vertices on it in cyclic order (empty for a plane that only touches the
 /// polytope in an edge or a vertex, or not at all). Unit plane normals expected.
+///
+/// Stored inline, without allocation: a cell is built for every triangle (three times over),
+/// and per-cell heap vectors were a fifth of the model's conversion time.
 struct ConvexCell {
-  std::vector<Vec4> planes;
-  std::vector<Vec3> vertices;
-  std::vector<std::vector<int>> faces;  ///< per plane, indices into vertices
+  /// A patch's clip planes and one more (the fold check of a patch's cell adds a plane) are
+  /// the most a cell is built from.
+  static constexpr size_t kMaxPlanes = QuadricPatch::kMaxPlanes + 1;
+  /// A simple polytope of n faces has at most 2n − 4 vertices (10 here). Points within the
+  /// tolerance of a plane count as on it, so nearly concurrent planes can leave a distinct
+  /// triple point or two more; room for two is kept, and triple points beyond it (only in such
+  /// a degenerate cluster: none in the 144 corpus meshes) are dropped.
+  static constexpr size_t kMaxVertices = 2 * kMaxPlanes - 4 + 2;
+  using Face = FixedVector<int8_t, kMaxVertices>;  ///< indices into vertices, in cyclic order
+
+  FixedVector<Vec4, kMaxPlanes> planes;
+  FixedVector<Vec3, kMaxVertices> vertices;
+  FixedVector<Face, kMaxPlanes> faces;  ///< one per plane
   double tolerance = 0.0;               ///< distance within which a point counts as on a plane
 
   bool empty() const { return vertices.empty(); }
@@ -25,8 +40,9 @@ struct ConvexCell {
 };
 
 /// Vertices (triple intersections of the planes inside all of them) and faces. `tolerance` is
-/// an absolute length (a small multiple of the round-off of the cell's size).
-ConvexCell makeConvexCell(const std::vector<Vec4>& planes, double tolerance);
+/// an absolute length (a small multiple of the round-off of the cell's size). At most
+/// ConvexCell::kMaxPlanes planes (a logic error otherwise).
+ConvexCell makeConvexCell(std::span<const Vec4> planes, double tolerance);
 
 /// Exact axis-aligned bounds of {q = 0} ∩ cell (empty when they do not meet): the box of the
 /// candidate extreme points, which are the points of the set where a coordinate is extremal on
