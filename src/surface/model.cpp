@@ -2,6 +2,8 @@
 
 #include <fmt/ranges.h>
 
+#include <algorithm>
+
 #include "model_cost.h"
 #include "quadtri/math/error.h"
 #include "quadtri/surface/bezier_triangle.h"
@@ -18,9 +20,14 @@
 
 namespace quadtri {
 
-const std::vector<QuadricPatch>& SurfaceModel::quadricPatches() const {
+const std::vector<QuadricPatch>& SurfaceModel::renderPatches() const {
   static const std::vector<QuadricPatch> none;
   return none;
+}
+
+std::span<const QuadricPatch> SurfaceModel::quadricPatches() const {
+  const std::vector<QuadricPatch>& all = renderPatches();
+  return {all.data(), std::min(all.size(), patchCount())};
 }
 
 const std::vector<BezierTriangle>& SurfaceModel::bezierPieces() const {

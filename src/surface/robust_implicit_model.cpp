@@ -290,7 +290,10 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   parallelFor(size_t(0), edges.size(), [&](size_t i) { edges[i] = sharedEdge(m, topo.edges[i]); });
   const std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m, topo);
 
-  resizeLarge(patches_, m.triangleCount());
+  // Room for a bridge per edge too (addBridges), so that appending them never moves the
+  // patches; pages of it that stay unused are never touched, so never resident.
+  reserveLarge(patches_, m.triangleCount() + topo.edges.size());
+  patches_.resize(m.triangleCount());
   resizeLarge(frames_, m.triangleCount());
   std::vector<QuadricCoeffs> pencils = largeVector<QuadricCoeffs>(m.triangleCount());
   std::vector<uint8_t> fallbacks(m.triangleCount(), 0);
@@ -430,8 +433,9 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
 void RobustImplicitModel::addBridges(const MeshTopology& topo,
                                      const std::vector<ConvexCell>& cells) {
   const TriangleMesh& m = mesh();
-  std::vector<QuadricPatch> bridges(topo.edges.size());
-  std::vector<char> needed(topo.edges.size(), 0);
+  // Each edge's bridge box (empty: no bridge), found in parallel; the bridges are then
+  // appended to the patches in edge order, into storage reserved for every edge at the start.
+  std::vector<Bounds3> boxes = largeVector<Bounds3>(topo.edges.size());
   parallelFor(size_t(0), topo.edges.size(), [&](size_t i) {
     const Edge& edge = topo.edges[i];
     if (edge.sides.size() != 2) return;
@@ -473,22 +477,25 @@ void RobustImplicitModel::addBridges(const MeshTopology& topo,
     if (box.empty()) return;  // both sheets lie on their bases along this face
     box.inflate(1e-7 * std::max(m.meanEdgeLength(ta), m.meanEdgeLength(tb)) +
                 1e-10 * (length + o.norm()));
+    boxes[i] = box;
+  });
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    if (boxes[i].empty()) continue;
+    const auto [ta, ka] = topo.edges[i].sides[0];
+    const auto [tb, kb] = topo.edges[i].sides[1];
+    const Vec4& plane = patches_[ta].planes[ka];
     QuadricPatch bridge;
     bridge.q.fill(0.0);
     bridge.q[6] = plane[0];
     bridge.q[7] = plane[1];
     bridge.q[8] = plane[2];
     bridge.q[9] = plane[3];
-    bridge.bounds = box;
+    bridge.bounds = boxes[i];
     bridge.planeCount = 0;
     bridge.joins = {int32_t(ta), int32_t(tb)};
     bridge.joinPlanes = {int8_t(ka), int8_t(kb)};
-    bridges[i] = bridge;
-    needed[i] = 1;
-  });
-  primitives_ = patches_;
-  for (size_t i = 0; i < bridges.size(); ++i)
-    if (needed[i]) primitives_.push_back(bridges[i]);
+    patches_.push_back(bridge);
+  }
 }
 
 SurfacePoint RobustImplicitModel::evaluate(size_t t, double u, double v) const {

@@ -28,7 +28,7 @@ class SphereQuadricModel final : public SurfaceModel {
     return {p, p};
   }
   Representation representation() const override { return Representation::Implicit; }
-  const std::vector<QuadricPatch>& quadricPatches() const override { return patches_; }
+  const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
   nlohmann::json patchJson(size_t) const override { return {}; }
 
  private:

@@ -150,7 +150,7 @@ class SphereProjection final : public SurfaceModel {
     return {p, p};
   }
   Representation representation() const override { return representation_; }
-  const std::vector<QuadricPatch>& quadricPatches() const override { return patches_; }
+  const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
   size_t patchMemoryBytes() const override { return patches_.size() * sizeof(QuadricPatch); }
   nlohmann::json patchJson(size_t) const override { return {}; }
 

@@ -28,7 +28,7 @@ class ImplicitModel final : public SurfaceModel {
   /// itself with f_p's normal is returned.
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Representation representation() const override { return Representation::Implicit; }
-  const std::vector<QuadricPatch>& quadricPatches() const override { return patches_; }
+  const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
   size_t patchMemoryBytes() const override { return sizeof(QuadricPatch) * patches_.size(); }
   /// {"quadric": [A..J], "planes": [[nx,ny,nz,d], ...], "bounds": {"min", "max"},
   ///  "parametric": {"c": [c0..c5]}, "control_points": [b01, b12, b20]}.

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,12 +58,13 @@ class SurfaceModel {
   /// For InputTriangles: whether rays leaving towards the shading normal's side start from the
   /// shadow-terminator offset point (shading_offset.h) instead of the hit.
   virtual bool liftsRayOrigins() const { return false; }
-  /// Implicit models: their quadric patches, one per triangle; empty otherwise.
-  virtual const std::vector<QuadricPatch>& quadricPatches() const;
   /// Implicit models: what the renderer and the crack-rate analysis trace, the patches first
   /// (index t is patch t) and then any extra primitives that join them (edge bridges, see
-  /// QuadricPatch::joins). The patches alone by default.
-  virtual const std::vector<QuadricPatch>& renderPatches() const { return quadricPatches(); }
+  /// QuadricPatch::joins); empty for other models.
+  virtual const std::vector<QuadricPatch>& renderPatches() const;
+  /// Implicit models: their quadric patches, one per triangle (the first patchCount() of
+  /// renderPatches()); empty otherwise.
+  std::span<const QuadricPatch> quadricPatches() const;
   /// Bezier models: their pieces, each naming its triangle (BezierTriangle::triangle); empty
   /// otherwise.
   virtual const std::vector<BezierTriangle>& bezierPieces() const;

@@ -70,12 +70,11 @@ class RobustImplicitModel final : public SurfaceModel {
   /// evaluate(t, u, v).position, without the normal.
   Vec3 position(size_t t, double u, double v) const;
   Representation representation() const override { return Representation::Implicit; }
-  const std::vector<QuadricPatch>& quadricPatches() const override { return patches_; }
   /// The patches, then one bridge per interior edge whose sides do not meet exactly.
-  const std::vector<QuadricPatch>& renderPatches() const override { return primitives_; }
-  size_t patchMemoryBytes() const override { return primitives_.size() * sizeof(QuadricPatch); }
+  const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
+  size_t patchMemoryBytes() const override { return patches_.size() * sizeof(QuadricPatch); }
   /// Number of edge bridges among renderPatches().
-  size_t bridgeCount() const { return primitives_.size() - patches_.size(); }
+  size_t bridgeCount() const { return patches_.size() - patchCount(); }
   /// Number of patches that fell back to their triangle's plane.
   size_t flatCount() const;
   bool isFlat(size_t t) const { return frames_[t].flat; }
@@ -117,8 +116,8 @@ class RobustImplicitModel final : public SurfaceModel {
                    ConvexCell& cell);
   void addBridges(const MeshTopology& topo, const std::vector<ConvexCell>& cells);
 
+  /// One patch per triangle, then the bridges (one array: the renderer traces it whole).
   std::vector<QuadricPatch> patches_;
-  std::vector<QuadricPatch> primitives_;
   std::vector<Frame> frames_;
 };
 
