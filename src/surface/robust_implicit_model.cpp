@@ -179,17 +179,17 @@ constexpr int kOverlapRounds = 8;
 constexpr double kSameSideCos = 0.5;
 
 // Per triangle: its cell overlaps the cell of a triangle it shares no vertex with, unless the
-// two triangles themselves (their flat cores) do, face the same way (kSameSideCos), or belong
-// to different parts (connected across edges, `part`): separate solids, such as the bones of
+// two triangles themselves (their flat cores, flatCore(t)) do, face the same way (kSameSideCos), or
+// belong to different parts (connected across edges, `part`): separate solids, such as the bones of
 // bones.off, that touch or pass through each other, where their patches may cross as their
 // triangles do; each part stays closed (and crack_rate counts hits of triangles that share no
 // vertex as separate crossings). Of an overlapping pair only the triangle whose patch reaches
 // farther (relative to its size) is flagged, unless `both`. Only pairs with a core that
 // `changed` are tested. Candidate pairs from a uniform grid of
 // the cells' boxes (spacing: the mean edge length).
+template <class FlatCore>
 std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<ConvexCell>& cells,
-                                   const std::vector<ConvexCell>& flatCores,
-                                   const std::vector<Vec3>& faceNormals,
+                                   const FlatCore& flatCore, const std::vector<Vec3>& faceNormals,
                                    const std::vector<uint32_t>& part,
                                    const std::vector<double>& reach,
                                    const std::vector<char>& changed, bool both) {
@@ -268,7 +268,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
     const double tolerance = 1e-9 * std::min(mesh.meanEdgeLength(a), mesh.meanEdgeLength(b));
     // Triangles that cross each other (or nearly) keep crossing whatever their patches do.
     hit[i] = cellsOverlap(cells[a], cells[b], tolerance) &&
-             !cellsOverlap(flatCores[a], flatCores[b], tolerance);
+             !cellsOverlap(flatCore(a), flatCore(b), tolerance);
   });
   for (size_t i = 0; i < pairs.size(); ++i) {
     if (!hit[i]) continue;
@@ -366,7 +366,21 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   for (size_t t = 0; t < m.triangleCount(); ++t) fitted[t] = patches_[t].q;
   std::vector<double> reach(m.triangleCount(), kInfinity);
   std::vector<char> redo(m.triangleCount(), 1);
-  std::vector<ConvexCell> flatCores, cores = largeVector<ConvexCell>(m.triangleCount());
+  std::vector<ConvexCell> cores = largeVector<ConvexCell>(m.triangleCount());
+  // A triangle's flat core: its cell cut down to a slab of 1e-6 of its size around it. Only
+  // the rare pairs whose cores overlap need one, so it is built there, not kept for every
+  // triangle.
+  const auto flatCore = [&](size_t t) {
+    if (cells[t].empty()) return ConvexCell();
+    const QuadricPatch& patch = patches_[t];
+    const Vec3& n = frames_[t].faceNormal;
+    const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
+    const double thin = 1e-6 * m.meanEdgeLength(t);
+    FixedVector<Vec4, 5> planes(patch.planes.begin(), patch.planes.begin() + 3);
+    planes.push_back(Vec4(n.x(), n.y(), n.z(), -h + thin));
+    planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + thin));
+    return makeConvexCell(planes, cells[t].tolerance);
+  };
   // Cells of triangles that share no vertex must not overlap (thin parts, such as a plate
   // thinner than its triangles: a sheet of one side would otherwise reach through the other's):
   // each round halves the reach of the cells that do, and chooses their patches again.
@@ -374,20 +388,6 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
       if (redo[t]) choosePatch(t, fitted[t], pencils[t], reach[t], cells[t]);
     });
-    if (flatCores.empty()) {
-      resizeLarge(flatCores, m.triangleCount());
-      parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
-        if (cells[t].empty()) return;
-        const QuadricPatch& patch = patches_[t];
-        const Vec3& n = frames_[t].faceNormal;
-        const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
-        const double thin = 1e-6 * m.meanEdgeLength(t);
-        FixedVector<Vec4, 5> planes(patch.planes.begin(), patch.planes.begin() + 3);
-        planes.push_back(Vec4(n.x(), n.y(), n.z(), -h + thin));
-        planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + thin));
-        flatCores[t] = makeConvexCell(planes, cells[t].tolerance);
-      });
-    }
     // The cores: each cell cut down to the heights of its patch and of the region between
     // the patch and the triangle (what the patch and its bridges can reach); only those of the
     // patches chosen again change.
@@ -413,7 +413,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       reaches[t] = frames_[t].reach;
     }
     const std::vector<char> overlapping = overlappingCells(
-        m, cores, flatCores, faceNormals, part, reaches, redo, round >= kOverlapRounds / 2);
+        m, cores, flatCore, faceNormals, part, reaches, redo, round >= kOverlapRounds / 2);
     bool any = false;
     for (size_t t = 0; t < m.triangleCount(); ++t) {
       redo[t] = overlapping[t];
