@@ -44,17 +44,13 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
     : SurfaceModel(std::move(meshPtr)) {
   const TriangleMesh& m = mesh();
   std::vector<uint8_t> fallbacks;
-  const auto controlPoints = edgeControlPoints(m, &fallbacks);
+  controlPoints_ = edgeControlPoints(m, &fallbacks);
   setFallbacks(std::move(fallbacks));
   const size_t n = m.triangleCount();
-  resizeLarge(parametric_, n);
-  resizeLarge(parametricOrientation_, n);
   resizeLarge(patches_, n);
   parallelFor(size_t(0), n, [&](size_t t) {
-    const QuadraticPatch fp = quadraticPatch(m, controlPoints, t);
+    const QuadraticPatch fp = parametricPatch(t);
     const double orient = patchOrientation(m, t);
-    parametric_[t] = fp;
-    parametricOrientation_[t] = orient;
     QuadricPatch& patch = patches_[t];
     patch.q = fitThesisQuadric(fp);
     setThesisClipPlanes(fp, patch);
@@ -83,9 +79,9 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
 }
 
 SurfacePoint ImplicitModel::evaluate(size_t t, double u, double v) const {
-  const QuadraticPatch& fp = parametric_[t];
+  const QuadraticPatch fp = parametricPatch(t);
   const QuadricPatch& patch = patches_[t];
-  const double orient = parametricOrientation_[t];
+  const double orient = patchOrientation(mesh(), t);
   // Where f_p is singular its normal falls back to the triangle's, oriented the same way.
   const Vec3 nParam =
       safeNormalized(parametricNormal(fp, orient, u, v), orient * mesh().faceNormal(t));
@@ -95,7 +91,7 @@ SurfacePoint ImplicitModel::evaluate(size_t t, double u, double v) const {
 }
 
 nlohmann::json ImplicitModel::patchJson(size_t t) const {
-  nlohmann::json j = quadraticPatchJson(parametric_[t]);
+  nlohmann::json j = quadraticPatchJson(parametricPatch(t));
   j.update(quadricPatchJson(patches_[t]));
   return j;
 }

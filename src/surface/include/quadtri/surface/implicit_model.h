@@ -13,7 +13,7 @@ namespace quadtri {
 /// Each triangle becomes the quadric f_i = 0 fitted by the thesis' least squares to its §4.2
 /// parametric patch f_p (implicit_fit.h), clipped by the thesis' four planes and by an
 /// axis-aligned box. The thesis had no box; here it is the box of the patch's own surface: the
-/// 45 points of a triangular lattice of f_p with 8 steps per side, projected onto the quadric
+/// 15 points of a triangular lattice of f_p with 4 steps per side, projected onto the quadric
 /// along f_p's normal (only those inside the planes), plus the triangle's corners, inflated by
 /// 5% of the triangle's longest edge so the sheet between samples stays inside. fellBack(t):
 /// one of f_p's edge control points gave up its tangent planes (clamped, or a damped solve off
@@ -34,12 +34,14 @@ class ImplicitModel final : public SurfaceModel {
   ///  "parametric": {"c": [c0..c5]}, "control_points": [b01, b12, b20]}.
   nlohmann::json patchJson(size_t t) const override;
 
-  /// The §4.2 parametric patch f_p that patch t was fitted to.
-  const QuadraticPatch& parametricPatch(size_t t) const { return parametric_[t]; }
+  /// The §4.2 parametric patch f_p that patch t was fitted to (from the triangle's corners and
+  /// its edges' control points, which are all the model keeps of it).
+  QuadraticPatch parametricPatch(size_t t) const {
+    return quadraticPatch(mesh(), controlPoints_, t);
+  }
 
  private:
-  std::vector<QuadraticPatch> parametric_;
-  std::vector<double> parametricOrientation_;  ///< patchOrientation() of each triangle
+  std::vector<std::array<Vec3, 3>> controlPoints_;  ///< edgeControlPoints(), per triangle
   std::vector<QuadricPatch> patches_;
 };
 
