@@ -74,7 +74,7 @@ constexpr ModelEntry kModels[] = {
     {"quadric-implicit", make<ImplicitModel>, {false, 700, 7800, 290}},
     // Not welded: a vertex per patch corner.
     {"quadric-edges-eq42", make<EdgesModel, EdgesModel::Blend::ThesisEq42>, {false, 0, 4500, 350}},
-    {"quadric-implicit-robust", make<RobustImplicitModel>, {false, 6200, 9800, 310}},
+    {"quadric-implicit-robust", make<RobustImplicitModel>, {false, 3400, 9800, 310}},
     {"phong", make<PhongModel>, {false, 0, 1900, 290}},
     {"pn", make<PnModel>, {false, 0, 6100, 290}},
     {"nagata", make<NagataModel>, {false, 0, 2500, 290}},
