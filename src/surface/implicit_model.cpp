@@ -38,6 +38,49 @@ std::optional<Vec3> projectOntoQuadric(const QuadricCoeffs& q, const QuadraticPa
   return Vec3(p + *s * n);
 }
 
+// projectOntoQuadric for the bounds, with the same root chosen, without normalising f_p's
+// normal: along n = ∂u × ∂v the roots scale by |n| and the distance test compares squares, so
+// neither the normal's nor the distance's square root is taken (nor the orientation, which only
+// turns the line around). The point may differ from projectOntoQuadric's by rounding.
+std::optional<Vec3> projectForBounds(const QuadricCoeffs& q, const QuadraticPatch& fp, double u,
+                                     double v, double reach) {
+  const Vec3 p = fp.position(u, v);
+  Vec3 du, dv;
+  fp.derivatives(u, v, du, dv);
+  const Vec3 n = du.cross(dv);
+  const double c = evalQuadric(q, p);
+  if (c == 0.0) return p;
+  const double nn = n.squaredNorm();
+  if (!(nn > 0.0) || !std::isfinite(nn)) return std::nullopt;
+  const double a = q[0] * n.x() * n.x() + q[1] * n.y() * n.y() + q[2] * n.z() * n.z() +
+                   q[3] * n.x() * n.y() + q[4] * n.x() * n.z() + q[5] * n.y() * n.z();
+  const double b = quadricGradient(q, p).dot(n);
+  double roots[2];
+  int count = 0;
+  if (a == 0.0) {
+    if (b != 0.0) roots[count++] = -c / b;
+  } else {
+    const double disc = b * b - 4.0 * a * c;
+    if (disc < 0.0) return std::nullopt;
+    const double h = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+    if (h != 0.0) {
+      roots[count++] = h / a;
+      roots[count++] = c / h;
+    }
+  }
+  const double reach2 = reach * reach;
+  double best = 0.0;
+  bool found = false;
+  for (int i = 0; i < count; ++i) {
+    const double s = roots[i];
+    if (!std::isfinite(s) || s * s * nn > reach2) continue;
+    if (!found || std::abs(s) < std::abs(best)) best = s;
+    found = true;
+  }
+  if (!found) return std::nullopt;
+  return Vec3(p + best * n);
+}
+
 }  // namespace
 
 ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
@@ -69,8 +112,8 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
     const double reach = longestEdge(fp);
     for (int i = 0; i <= kBoundSamples; ++i)
       for (int j = 0; i + j <= kBoundSamples; ++j) {
-        const auto p = projectOntoQuadric(patch.q, fp, orient, double(i) / kBoundSamples,
-                                          double(j) / kBoundSamples, reach);
+        const auto p = projectForBounds(patch.q, fp, double(i) / kBoundSamples,
+                                        double(j) / kBoundSamples, reach);
         if (p && patch.inside(*p)) box.extend(*p);
       }
     box.inflate(kBoundMargin * reach);

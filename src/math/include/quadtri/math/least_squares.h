@@ -30,15 +30,16 @@ bool householderLeastSquares(Eigen::Matrix<double, R, C> A, Eigen::Matrix<double
     const double alpha = A(j, j) > 0.0 ? -norm : norm;
     A(j, j) -= alpha;
     const double vv = 2.0 * norm * (norm + std::abs(A(j, j) + alpha));
+    const double twoOverVv = 2.0 / vv;  // one division per column, not one per column it reflects
     for (int k = j + 1; k < C; ++k) {
       double s = 0.0;
       for (int i = j; i < R; ++i) s += A(i, j) * A(i, k);
-      const double f = 2.0 * s / vv;
+      const double f = s * twoOverVv;
       for (int i = j; i < R; ++i) A(i, k) -= f * A(i, j);
     }
     double s = 0.0;
     for (int i = j; i < R; ++i) s += A(i, j) * b[i];
-    const double f = 2.0 * s / vv;
+    const double f = s * twoOverVv;
     for (int i = j; i < R; ++i) b[i] -= f * A(i, j);
     diagonal[j] = alpha;
   }
