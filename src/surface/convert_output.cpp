@@ -58,18 +58,23 @@ void writeArray(std::ostream& out, size_t count, const Item& item) {
   out << ']';
 }
 
-// The layout of `count` records item(i), or of `empty` when there are none: the records are
-// made kChunk at a time in parallel and added in order, never all held.
+// The layout of `count` records item(i), or of `empty` when there are none: each part of
+// kChunk records makes its own layout in parallel, one record at a time (never all held), and
+// the parts' layouts are merged in order. Records with a null (whose layout depends on the
+// order they are added in) are added one by one instead.
 template <typename Item>
 RecordLayout layoutOf(size_t count, const Item& item, const nlohmann::json& empty) {
   constexpr size_t kChunk = 4096;
   RecordLayout layout;
   if (count == 0) layout.add(empty);
-  std::vector<nlohmann::json> records;
-  for (size_t first = 0; first < count; first += kChunk) {
-    records.assign(std::min(kChunk, count - first), nlohmann::json());
-    parallelFor(size_t(0), records.size(), [&](size_t i) { records[i] = item(first + i); });
-    for (const nlohmann::json& r : records) layout.add(r);
+  std::vector<RecordLayout> parts((count + kChunk - 1) / kChunk);
+  parallelFor(size_t(0), parts.size(), [&](size_t p) {
+    for (size_t i = p * kChunk; i < std::min(count, (p + 1) * kChunk); ++i) parts[p].add(item(i));
+  });
+  for (const RecordLayout& part : parts) layout.merge(part);
+  if (layout.sawNull()) {
+    layout = RecordLayout();
+    for (size_t i = 0; i < count; ++i) layout.add(item(i));
   }
   layout.finish();
   return layout;

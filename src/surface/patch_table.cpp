@@ -54,9 +54,9 @@ RecordField leafOf(const nlohmann::json& v, const std::string& key) {
   return n;
 }
 
-void merge(RecordField& into, const nlohmann::json& v, const std::string& key);
+void merge(RecordField& into, const nlohmann::json& v, const std::string& key, bool& sawNull);
 
-void mergeObject(RecordField& into, const nlohmann::json& object) {
+void mergeObject(RecordField& into, const nlohmann::json& object, bool& sawNull) {
   into.kind = Kind::Object;
   into.present = true;
   for (const auto& entry : object.items()) {
@@ -69,19 +69,40 @@ void mergeObject(RecordField& into, const nlohmann::json& object) {
       into.children.emplace_back();
       into.children.back().name = k;
     }
-    merge(into.children[i], entry.value(), k);
+    merge(into.children[i], entry.value(), k, sawNull);
   }
 }
 
-void merge(RecordField& into, const nlohmann::json& v, const std::string& key) {
+// Merges the shape of a leaf (a number or list, present) into a present leaf `into`. `later`
+// may stand for one record or for several (a part's layout): the result is the same either way.
+void mergeLeaf(RecordField& into, const RecordField& later, const std::string& key) {
+  if (into.dims.empty() != later.dims.empty())
+    fail("patch JSON '{}': a number in one record, a list in another", key);
+  into.kind = mergeKind(into.kind, later.kind);
+  if (later.dims.empty()) return;
+  // Variable: not every record's list has the same length.
+  if (into.dims[0] != later.dims[0] || later.variable) into.variable = true;
+  const int64_t outer = std::max(into.dims[0], later.dims[0]);
+  if (into.unknownInner) {
+    into.dims = later.dims;
+    into.unknownInner = later.unknownInner;
+  } else if (!later.unknownInner && !std::equal(into.dims.begin() + 1, into.dims.end(),
+                                                later.dims.begin() + 1, later.dims.end())) {
+    fail("patch JSON '{}': lists of different shapes in different records", key);
+  }
+  into.dims[0] = outer;
+}
+
+void merge(RecordField& into, const nlohmann::json& v, const std::string& key, bool& sawNull) {
   if (v.is_object()) {
     if (into.present && into.kind != Kind::Object)
       fail("patch JSON '{}': an object in one record, a number or list in another", key);
-    mergeObject(into, v);
+    mergeObject(into, v, sawNull);
     return;
   }
   if (into.kind == Kind::Object)
     fail("patch JSON '{}': an object in one record, a number or list in another", key);
+  if (v.is_null()) sawNull = true;
   if (v.is_null() && into.present) return;
   RecordField leaf = leafOf(v, key);
   if (!into.present) {
@@ -89,20 +110,29 @@ void merge(RecordField& into, const nlohmann::json& v, const std::string& key) {
     into = std::move(leaf);
     return;
   }
-  if (into.dims.empty() != leaf.dims.empty())
-    fail("patch JSON '{}': a number in one record, a list in another", key);
-  into.kind = mergeKind(into.kind, leaf.kind);
-  if (leaf.dims.empty()) return;
-  if (into.dims[0] != leaf.dims[0]) into.variable = true;
-  const int64_t outer = std::max(into.dims[0], leaf.dims[0]);
-  if (into.unknownInner) {
-    into.dims = leaf.dims;
-    into.unknownInner = leaf.unknownInner;
-  } else if (!leaf.unknownInner && !std::equal(into.dims.begin() + 1, into.dims.end(),
-                                               leaf.dims.begin() + 1, leaf.dims.end())) {
-    fail("patch JSON '{}': lists of different shapes in different records", key);
+  mergeLeaf(into, leaf, key);
+}
+
+// The fields of a layout of later records merged into `into` (RecordLayout::merge).
+void mergeFields(RecordField& into, const RecordField& later) {
+  if (!later.present) return;
+  if (!into.present) {
+    const std::string name = into.name;
+    into = later;
+    into.name = name;
+    return;
   }
-  into.dims[0] = outer;
+  if ((into.kind == Kind::Object) != (later.kind == Kind::Object))
+    fail("patch JSON '{}': an object in one record, a number or list in another", later.name);
+  if (into.kind != Kind::Object) return mergeLeaf(into, later, later.name);
+  for (const RecordField& child : later.children) {
+    const auto it = std::find_if(into.children.begin(), into.children.end(),
+                                 [&](const RecordField& c) { return c.name == child.name; });
+    if (it == into.children.end())
+      into.children.push_back(child);
+    else
+      mergeFields(*it, child);
+  }
 }
 
 size_t valueBytes(const RecordField& f) {
@@ -192,7 +222,12 @@ void fillField(const RecordField& node, const nlohmann::json* v, char* base) {
 }  // namespace
 
 void RecordLayout::add(const nlohmann::json& record) {
-  mergeObject(root_, record);
+  mergeObject(root_, record, sawNull_);
+}
+
+void RecordLayout::merge(const RecordLayout& later) {
+  mergeFields(root_, later.root_);
+  sawNull_ |= later.sawNull_;
 }
 
 void RecordLayout::finish() {

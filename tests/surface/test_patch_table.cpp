@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
@@ -95,6 +96,56 @@ TEST_F(PatchTableTest, RecordsHoldThePatchJsonInTheirLayout) {
           << name << " " << key;
     }
   }
+}
+
+TEST(RecordLayoutMerge, PartsMergedInOrderGiveTheLayoutOfTheRecordsAddedOneByOne) {
+  // Records that exercise every rule: lists of varying and equal lengths, empty lists before
+  // and after full ones, int and float in one key, keys that appear late, nested objects.
+  std::mt19937 rng(7);
+  const auto pick = [&](int n) { return int(rng() % unsigned(n)); };
+  std::vector<nlohmann::json> records;
+  for (int r = 0; r < 200; ++r) {
+    nlohmann::json j;
+    j["id"] = r;
+    j["scale"] = pick(3) == 0 ? nlohmann::json(r) : nlohmann::json(0.5 * r);
+    j["same"] = {1.0, 2.0, 3.0};
+    nlohmann::json list = nlohmann::json::array();
+    for (int i = 0, n = pick(5); i < n; ++i) list.push_back({1.0 * i, 2.0, 3.0});
+    j["rows"] = list;
+    if (r > 150 && pick(2) == 0) j["late"] = {{"a", r}, {"b", {1.0, 2.0}}};
+    if (pick(4) == 0) j["flag"] = pick(2) == 0;
+    j["name"] = "skipped";
+    records.push_back(j);
+  }
+  RecordLayout oneByOne;
+  for (const nlohmann::json& r : records) oneByOne.add(r);
+  oneByOne.finish();
+  for (const size_t partSize : {1, 7, 64, 199}) {
+    RecordLayout merged;
+    for (size_t first = 0; first < records.size(); first += partSize) {
+      RecordLayout part;
+      for (size_t i = first; i < std::min(records.size(), first + partSize); ++i)
+        part.add(records[i]);
+      merged.merge(part);
+    }
+    EXPECT_FALSE(merged.sawNull());
+    merged.finish();
+    EXPECT_EQ(merged.itemSize(), oneByOne.itemSize()) << partSize;
+    // The header spells out every field's name, kind, variability and shape, in order.
+    EXPECT_EQ(patchTableHeader({}, merged, merged), patchTableHeader({}, oneByOne, oneByOne))
+        << partSize;
+  }
+  RecordLayout withNull;
+  withNull.add({{"x", 1.0}});
+  RecordLayout later;
+  later.add({{"x", nullptr}});
+  withNull.merge(later);
+  EXPECT_TRUE(withNull.sawNull());
+  // Shapes that disagree across parts are refused as across records.
+  RecordLayout lists, number;
+  lists.add({{"k", {1.0, 2.0}}});
+  number.add({{"k", 3.0}});
+  EXPECT_THROW(lists.merge(number), Error);
 }
 
 // Runs f, which must throw Error; returns the message.

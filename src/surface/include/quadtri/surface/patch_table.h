@@ -48,6 +48,14 @@ class RecordLayout {
  public:
   /// Adds one record's keys and shapes; throws Error for a key whose shapes disagree.
   void add(const nlohmann::json& record);
+  /// Adds the keys and shapes of `later`, a layout of the records that follow this one's
+  /// (before either is finished): the same layout as adding those records here one by one,
+  /// for records without nulls (a null counts only where a key was seen before it, so it
+  /// depends on the order: sawNull() says when that arose, and the caller adds records one by
+  /// one instead). Lets a layout be built in parallel, part by part.
+  void merge(const RecordLayout& later);
+  /// Whether a record added had a null value.
+  bool sawNull() const { return sawNull_; }
   /// Fixes shapes and offsets; call once after the last add.
   void finish();
   size_t itemSize() const { return itemSize_; }
@@ -61,6 +69,7 @@ class RecordLayout {
  private:
   RecordField root_ = RecordField::record();
   size_t itemSize_ = 0;
+  bool sawNull_ = false;
 };
 
 /// The layout of `records`, or of `empty` (one record describing the shape) when there are none.
@@ -84,8 +93,8 @@ std::string patchTableHeader(const PatchTableInfo& info, const RecordLayout& pat
 
 /// Writes the model's patch table (`.qtp`) to `out`: the header, the field lists, then one
 /// record per patch and per edge bridge, little-endian. The patches' JSON is computed twice, a
-/// few thousand at a time (once for the layout, once for the records), so the table is never
-/// held whole in memory.
+/// few thousand at a time (once for the layout, in parallel parts, once for the records), so
+/// the table is never held whole in memory.
 void writePatchTable(const SurfaceModel& model, const Tessellation& tessellation,
                      std::ostream& out);
 
