@@ -338,6 +338,26 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view byte
     // (Blender 2.47 wrote a bare comment there, assimp-testmodels' PLY/Wuson.ply).
   }
   if (!ended) fail("{}: the PLY header has no 'end_header' line", name);
+  // Assimp's PLY importer reads an element whose name it does not know as holding as many
+  // entries as the digits its name begins with (none here: 0), whatever its count says, so an
+  // element of another name that holds data shifts every element after it (fuzz_ply: a face
+  // list count read from a coordinate, 2 GB reserved). Such elements may only follow the ones
+  // Assimp reads.
+  const auto assimpKnows = [](const Element& e) {
+    return e.name == "vertex" || e.name == "face" || e.name == "tristrips" || e.name == "edge" ||
+           e.name == "material";
+  };
+  for (size_t i = 0; i < elements.size(); ++i) {
+    const Element& e = elements[i];
+    if (assimpKnows(e) || e.count == 0 || e.minBytes == 0) continue;
+    for (size_t j = i + 1; j < elements.size(); ++j)
+      if (assimpKnows(elements[j]) && elements[j].count > 0)
+        fail(
+            "{}:{}: element '{}' holds {} entries before element '{}' (line {}): Assimp reads "
+            "vertex, face, tristrips, edge and material elements and takes any other as empty, "
+            "which would shift the ones after it; expected other elements after those",
+            name, e.line, e.name, e.count, elements[j].name, elements[j].line);
+  }
   const uint64_t headerBytes = uint64_t(in.tellg());
   const uint64_t body = fileBytes - std::min(fileBytes, headerBytes);
   uint64_t need = 0;

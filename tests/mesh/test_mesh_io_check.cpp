@@ -224,6 +224,23 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
   expectContains(
       refusal([&] { inspectMeshFile(writeFile("obj-info.ply", objInfo + objInfoBody)); }),
       {"obj-info.ply:6: property of element 'vertex' after the obj_info line 5"});
+  // An element Assimp does not know, holding data before the vertices: Assimp takes it as
+  // empty and reads the faces from its bytes (fuzz_ply: a list count of 540 million).
+  const std::string unknownFirst =
+      "ply\nformat ascii 1.0\nelement camera 1\nproperty float f\nelement vertex 3\n"
+      "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n"
+      "7\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  expectContains(refusal([&] { loadMesh(writeFile("unknown-first.ply", unknownFirst)); }),
+                 {"unknown-first.ply:3: element 'camera' holds 1 entries before element 'vertex' "
+                  "(line 5)"});
+  // After the mesh's own elements, or empty, it shifts nothing.
+  const std::string unknownLast =
+      "ply\nformat ascii 1.0\nelement note 0\nproperty float f\nelement vertex 3\n"
+      "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nelement camera 1\nproperty float f\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n7\n";
+  EXPECT_EQ(loadMesh(writeFile("unknown-last.ply", unknownLast)).triangleCount(), 1u);
   // Between elements and before the first one, obj_info declares nothing to either reader.
   const std::string between =
       "ply\nformat ascii 1.0\nobj_info scanner 1\nelement vertex 3\nproperty float x\n"
