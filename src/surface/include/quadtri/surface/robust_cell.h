@@ -28,6 +28,10 @@ struct ConvexCell {
   static constexpr size_t kMaxVertices = 2 * kMaxPlanes - 4 + 2;
   using Face = FixedVector<int8_t, kMaxVertices>;  ///< indices into vertices, in cyclic order
 
+  // User-provided, so that an array of cells (one per triangle) is not zero-filled first: only
+  // the counts are set.
+  ConvexCell() {}
+
   FixedVector<Vec4, kMaxPlanes> planes;
   FixedVector<Vec3, kMaxVertices> vertices;
   FixedVector<Face, kMaxPlanes> faces;  ///< one per plane
