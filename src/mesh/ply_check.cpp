@@ -179,6 +179,20 @@ bool asciiValue(std::string_view word, const PlyType& t) {
   return ptr == end && (ec == std::errc() || ec == std::errc::result_out_of_range);
 }
 
+// Whether Assimp reads the whole of a float word: it reads the integer part as a 64-bit
+// integer and, where that overflows, stops without consuming the word, so every value after it
+// on the line reads the same digits again, a list count included (fuzz_ply: a 106-digit
+// coordinate made a list count of billions). 19 digits never overflow; more may.
+bool assimpReadsFloat(std::string_view word) {
+  size_t i = word.find_first_not_of("+-");
+  if (i == std::string_view::npos) return true;
+  while (i < word.size() && word[i] == '0') ++i;
+  size_t digits = 0;
+  while (i + digits < word.size() && std::isdigit(static_cast<unsigned char>(word[i + digits])))
+    ++digits;
+  return digits <= 19;
+}
+
 // ASCII: one element per line (as Assimp reads them), each line holding a value per scalar
 // property and, per list, its count and that many values; blank lines are skipped, words past
 // the last property ignored and properties past the line's last word absent (as Assimp does).
@@ -208,10 +222,18 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
         // A line short of its last properties: Assimp reads them as absent (Blender 2.77
         // wrote a vertex list without values, assimp-testmodels' PLY/issue623.ply).
         if (k >= w.size()) break;
+        const auto checkFloat = [&](std::string_view word) {
+          if (!p.value->isInteger && !assimpReadsFloat(word))
+            fail(
+                "{}:{}: element '{}' {}: property '{}' is '{}', a number whose integer part has "
+                "more than 19 digits, which Assimp cannot read; expected it with an exponent",
+                name, lineNo, e.name, i, p.name, word.substr(0, 40));
+        };
         if (!p.count) {
           if (!asciiValue(w[k], *p.value))
             fail("{}:{}: element '{}' {}: property '{}' is '{}', expected {}", name, lineNo, e.name,
                  i, p.name, w[k], p.value->isInteger ? "an integer" : "a number");
+          checkFloat(w[k]);
           ++k;
           continue;
         }
@@ -225,6 +247,8 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
           if (!asciiValue(w[j], *p.value))
             fail("{}:{}: element '{}' {}: list '{}' holds '{}', expected {}", name, lineNo, e.name,
                  i, p.name, w[j], p.value->isInteger ? "an integer" : "a number");
+          else
+            checkFloat(w[j]);
         k += 1 + size_t(*n);
       }
     }

@@ -241,6 +241,25 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
       "property list uchar int vertex_indices\nelement camera 1\nproperty float f\n"
       "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n7\n";
   EXPECT_EQ(loadMesh(writeFile("unknown-last.ply", unknownLast)).triangleCount(), 1u);
+  // A coordinate whose integer part overflows Assimp's 64-bit read: Assimp stalls on it and
+  // reads it again as the next values, a list count included (fuzz_ply: 7 GB reserved).
+  const std::string longNumber =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 " +
+      std::string(25, '8') + ".5 0\n3 0 1 2\n";
+  expectContains(
+      refusal([&] { loadMesh(writeFile("long-number.ply", longNumber)); }),
+      {"long-number.ply:12: element 'vertex' 2: property 'y' is '8888", "more than 19 digits"});
+  // 19 digits, and any number of leading zeros, are read whole.
+  const std::string nineteen =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 " +
+      std::string(30, '0') + "1 -" + std::string(19, '1') + ".5\n3 0 1 2\n";
+  EXPECT_EQ(loadMesh(writeFile("nineteen.ply", nineteen)).triangleCount(), 1u);
   // Between elements and before the first one, obj_info declares nothing to either reader.
   const std::string between =
       "ply\nformat ascii 1.0\nobj_info scanner 1\nelement vertex 3\nproperty float x\n"
