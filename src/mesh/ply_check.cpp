@@ -290,6 +290,10 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view byte
     if (format.empty() && (w[0] == "element" || w[0] == "property"))
       fail("{}:{}: expected the 'format' line before '{}'", name, lineNo, w[0]);
     if (w[0] == "format") {
+      // Among an element's properties a format line ends them for Assimp, as obj_info does.
+      if (!elements.empty())
+        fail("{}:{}: a 'format' line after element '{}', expected it before the first element",
+             name, lineNo, elements.back().name);
       if (w.size() != 3 ||
           (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
         fail("{}:{}: '{}': expected 'format ascii|binary_little_endian|binary_big_endian 1.0'",

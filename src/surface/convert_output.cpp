@@ -59,23 +59,38 @@ void writeArray(std::ostream& out, size_t count, const Item& item) {
 }
 
 // The layout of `count` records item(i), or of `empty` when there are none: each part of
-// kChunk records makes its own layout in parallel, one record at a time (never all held), and
-// the parts' layouts are merged in order. Records with a null (whose layout depends on the
-// order they are added in) are added one by one instead.
+// kPart records makes its own layout in parallel, one record at a time (never all held), and
+// the parts' layouts are merged in order. Where a part saw a null (whose layout depends on the
+// order the records come in) or refused a record, the records are added one by one instead:
+// the layout, or the error, is then the one-by-one result.
 template <typename Item>
 RecordLayout layoutOf(size_t count, const Item& item, const nlohmann::json& empty) {
-  constexpr size_t kChunk = 4096;
+  constexpr size_t kPart = 256;
+  const auto oneByOne = [&] {
+    RecordLayout layout;
+    if (count == 0) layout.add(empty);
+    for (size_t i = 0; i < count; ++i) layout.add(item(i));
+    layout.finish();
+    return layout;
+  };
+  std::vector<RecordLayout> parts((count + kPart - 1) / kPart);
+  std::vector<char> refused(parts.size(), 0);
+  parallelFor(size_t(0), parts.size(), [&](size_t p) {
+    try {
+      for (size_t i = p * kPart; i < std::min(count, (p + 1) * kPart); ++i) parts[p].add(item(i));
+    } catch (const Error&) {
+      refused[p] = 1;
+    }
+  });
+  if (std::find(refused.begin(), refused.end(), 1) != refused.end()) return oneByOne();
   RecordLayout layout;
   if (count == 0) layout.add(empty);
-  std::vector<RecordLayout> parts((count + kChunk - 1) / kChunk);
-  parallelFor(size_t(0), parts.size(), [&](size_t p) {
-    for (size_t i = p * kChunk; i < std::min(count, (p + 1) * kChunk); ++i) parts[p].add(item(i));
-  });
-  for (const RecordLayout& part : parts) layout.merge(part);
-  if (layout.sawNull()) {
-    layout = RecordLayout();
-    for (size_t i = 0; i < count; ++i) layout.add(item(i));
+  try {
+    for (const RecordLayout& part : parts) layout.merge(part);
+  } catch (const Error&) {
+    return oneByOne();
   }
+  if (layout.sawNull()) return oneByOne();
   layout.finish();
   return layout;
 }

@@ -152,7 +152,11 @@ ConvexCell makeConvexCell(std::span<const Vec4> planes, double tolerance) {
         if (!allFinite(p) || !cell.contains(p)) continue;
         bool known = false;
         for (const Vec3& v : cell.vertices) known |= (v - p).squaredNorm() <= merge2;
-        if (!known && !cell.vertices.full()) cell.vertices.push_back(p);
+        if (known) continue;
+        if (cell.vertices.full())
+          cell.overflowed = true;
+        else
+          cell.vertices.push_back(p);
       }
     }
   cell.faces.resize(n);

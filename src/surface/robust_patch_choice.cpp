@@ -188,7 +188,7 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
     patch.planes[4] << -n, n.dot(centre) + hi;
     patch.planeCount = planeCount;
     cell = makeConvexCell({patch.planes.begin(), patch.planes.begin() + planeCount}, tolerance);
-    if (cell.vertices.size() < 4) return false;
+    if (cell.vertices.size() < 4 || cell.overflowed) return false;
     // One sheet, a graph over the triangle's plane: orientation·∇q·n is positive wherever the
     // quadric vanishes in the cell. (Along a line parallel to n a quadric's two roots have
     // opposite slopes, so each such line then meets it at most once.) orientation·∇q·n is
@@ -207,7 +207,8 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
                                                          patch.planes.begin() + planeCount);
         planes.push_back(Vec4(slope.x(), slope.y(), slope.z(), offset) / slope.norm());
         const ConvexCell turned = makeConvexCell(planes, tolerance);
-        folded = !turned.empty() && !quadricBoundsInCell(q, turned).empty();
+        // A cell too degenerate to hold its vertices proves nothing: taken as folded.
+        folded = turned.overflowed || (!turned.empty() && !quadricBoundsInCell(q, turned).empty());
       } else {
         folded = !(offset < 0.0);  // orientation·∇q·n is constant: it must exceed the margin
       }

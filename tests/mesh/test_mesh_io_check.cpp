@@ -260,6 +260,14 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
       "0 0 0\n1 0 0\n0 " +
       std::string(30, '0') + "1 -" + std::string(19, '1') + ".5\n3 0 1 2\n";
   EXPECT_EQ(loadMesh(writeFile("nineteen.ply", nineteen)).triangleCount(), 1u);
+  // A format line repeated among the properties ends them for Assimp too.
+  expectContains(
+      refusal([&] {
+        inspectMeshFile(writeFile("format-again.ply",
+                                  "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                  "format ascii 1.0\nproperty float y\nend_header\n0 0\n"));
+      }),
+      {"format-again.ply:5: a 'format' line after element 'vertex'"});
   // Between elements and before the first one, obj_info declares nothing to either reader.
   const std::string between =
       "ply\nformat ascii 1.0\nobj_info scanner 1\nelement vertex 3\nproperty float x\n"

@@ -30,9 +30,7 @@ class FixedVector {
   }
   FixedVector(std::initializer_list<T> values) { assign(values.begin(), values.end()); }
   template <class It>
-  FixedVector(It first, It last) {
-    assign(first, last);
-  }
+  requires(!std::is_integral_v<It>) FixedVector(It first, It last) { assign(first, last); }
 
   template <class It>
   void assign(It first, It last) {
@@ -51,7 +49,8 @@ class FixedVector {
     items_[size_] = value;
     ++size_;
   }
-  /// Grows (new elements value-initialised) or shrinks to n ≤ N elements.
+  /// Grows or shrinks to n ≤ N elements; new elements are assigned T{} (zero for numbers and
+  /// for FixedVectors, empty; Eigen's fixed-size vectors stay uninitialised by T{}).
   void resize(size_t n) {
     assert(n <= N);
     for (size_t i = size_; i < n; ++i) items_[i] = T{};

@@ -50,9 +50,10 @@ class RecordLayout {
   void add(const nlohmann::json& record);
   /// Adds the keys and shapes of `later`, a layout of the records that follow this one's
   /// (before either is finished): the same layout as adding those records here one by one,
-  /// for records without nulls (a null counts only where a key was seen before it, so it
-  /// depends on the order: sawNull() says when that arose, and the caller adds records one by
-  /// one instead). Lets a layout be built in parallel, part by part.
+  /// for records without nulls (a null is ignored where its key was seen before and makes a
+  /// float field where the key is new, so its effect depends on the order: sawNull() says when
+  /// that arose, and the caller adds the records one by one instead). Lets a layout be built
+  /// in parallel, part by part.
   void merge(const RecordLayout& later);
   /// Whether a record added had a null value.
   bool sawNull() const { return sawNull_; }
@@ -93,8 +94,8 @@ std::string patchTableHeader(const PatchTableInfo& info, const RecordLayout& pat
 
 /// Writes the model's patch table (`.qtp`) to `out`: the header, the field lists, then one
 /// record per patch and per edge bridge, little-endian. The patches' JSON is computed twice, a
-/// few thousand at a time (once for the layout, in parallel parts, once for the records), so
-/// the table is never held whole in memory.
+/// few thousand at a time (once for the layout, in parallel parts of 256, once for the
+/// records), so the table is never held whole in memory.
 void writePatchTable(const SurfaceModel& model, const Tessellation& tessellation,
                      std::ostream& out);
 

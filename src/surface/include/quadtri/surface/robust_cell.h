@@ -23,8 +23,9 @@ struct ConvexCell {
   static constexpr size_t kMaxPlanes = QuadricPatch::kMaxPlanes + 1;
   /// A simple polytope of n faces has at most 2n − 4 vertices (10 here). Points within the
   /// tolerance of a plane count as on it, so nearly concurrent planes can leave a distinct
-  /// triple point or two more; room for two is kept, and triple points beyond it (only in such
-  /// a degenerate cluster: none in the 144 corpus meshes) are dropped.
+  /// triple point or two more; room for two is kept. A cell of more (only in such a degenerate
+  /// cluster, from 6 or 7 planes: 5 have at most C(5, 3) = 10 triple points) is `overflowed`,
+  /// its vertices and faces incomplete, and its users reject it.
   static constexpr size_t kMaxVertices = 2 * kMaxPlanes - 4 + 2;
   using Face = FixedVector<int8_t, kMaxVertices>;  ///< indices into vertices, in cyclic order
 
@@ -36,6 +37,7 @@ struct ConvexCell {
   FixedVector<Vec3, kMaxVertices> vertices;
   FixedVector<Face, kMaxPlanes> faces;  ///< one per plane
   double tolerance = 0.0;               ///< distance within which a point counts as on a plane
+  bool overflowed = false;  ///< more than kMaxVertices distinct vertices: incomplete, unusable
 
   bool empty() const { return vertices.empty(); }
   /// Inside every plane, to within the tolerance.
