@@ -79,6 +79,27 @@ TEST(ConvexCell, SevenPlanesMakeTheirPolytopeAndAnEighthIsRefused) {
   EXPECT_THROW(makeConvexCell(planes, 1e-12), Error);
 }
 
+TEST(ConvexCell, MoreTriplePointsThanItHoldsMarkItOverflowed) {
+  // Seven nearly vertical planes through nearly one point, offsets of the order of the
+  // tolerance (found by a random search): their triple points spread along the axis, far
+  // further apart than the merge radius, and more than 12 of them lie within the tolerance of
+  // every plane. The cell cannot hold them and says so; with a tight tolerance it can.
+  const std::vector<Vec4> planes = {
+      {-0.98376929605414731, 0.17915909728542326, 0.0099995000374968768, 0.00039332986666017655},
+      {-0.58745785564181741, -0.80919297935889056, 0.0099995000374968768, 0.00015944279705616094},
+      {-0.036886171130044845, -0.99926944333266066, 0.0099995000374968768, -0.00064550774525900145},
+      {0.85566320288106157, -0.51743646299263024, 0.0099995000374968768, 0.00021740516812841237},
+      {0.96475980749464818, 0.26294205415241123, 0.0099995000374968768, -0.00075690306188309052},
+      {-0.036398371117109335, 0.999287330340489, 0.0099995000374968768, -0.0003780401590808641},
+      {-0.61133761475338155, 0.79130672358235798, 0.0099995000374968768, -0.00087557689135370545}};
+  const ConvexCell loose = makeConvexCell(planes, 1e-3);
+  EXPECT_TRUE(loose.overflowed);
+  EXPECT_EQ(loose.vertices.size(), ConvexCell::kMaxVertices);
+  const ConvexCell tight = makeConvexCell(planes, 1e-12);
+  EXPECT_FALSE(tight.overflowed);
+  EXPECT_LE(tight.vertices.size(), 2 * planes.size() - 4);
+}
+
 TEST(ConvexCell, OverlapNeedsMoreThanTouching) {
   const ConvexCell a = boxCell(Vec3(0, 0, 0), Vec3(1, 1, 1));
   EXPECT_TRUE(cellsOverlap(a, boxCell(Vec3(0.5, 0.5, 0.5), Vec3(2, 2, 2)), 1e-12));
