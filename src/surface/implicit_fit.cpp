@@ -137,6 +137,23 @@ void setThesisClipPlanes(const QuadraticPatch& fp, QuadricPatch& patch) {
   }
 }
 
+int lineQuadricRoots(double a, double b, double c, double roots[2]) {
+  int count = 0;
+  if (a == 0.0) {
+    if (b != 0.0) roots[count++] = -c / b;
+    return count;
+  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0) return 0;
+  // h = -(b + sign(b)√disc)/2 avoids cancellation; the roots are h/a and c/h.
+  const double h = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  if (h != 0.0) {
+    roots[count++] = h / a;
+    roots[count++] = c / h;
+  }
+  return count;
+}
+
 std::optional<double> nearestRayRoot(const QuadricCoeffs& q, const Vec3& p, const Vec3& d,
                                      double maxDistance) {
   const double a = q[0] * d.x() * d.x() + q[1] * d.y() * d.y() + q[2] * d.z() * d.z() +
@@ -145,19 +162,7 @@ std::optional<double> nearestRayRoot(const QuadricCoeffs& q, const Vec3& p, cons
   const double c = evalQuadric(q, p);
   if (c == 0.0) return 0.0;
   double roots[2];
-  int count = 0;
-  if (a == 0.0) {
-    if (b != 0.0) roots[count++] = -c / b;
-  } else {
-    const double disc = b * b - 4.0 * a * c;
-    if (disc < 0.0) return std::nullopt;
-    // h = -(b + sign(b)√disc)/2 avoids cancellation; the roots are h/a and c/h.
-    const double h = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-    if (h != 0.0) {
-      roots[count++] = h / a;
-      roots[count++] = c / h;
-    }
-  }
+  const int count = lineQuadricRoots(a, b, c, roots);
   const double dLen = d.norm();
   std::optional<double> best;
   for (int i = 0; i < count; ++i) {

@@ -56,18 +56,7 @@ std::optional<Vec3> projectForBounds(const QuadricCoeffs& q, const QuadraticPatc
                    q[3] * n.x() * n.y() + q[4] * n.x() * n.z() + q[5] * n.y() * n.z();
   const double b = quadricGradient(q, p).dot(n);
   double roots[2];
-  int count = 0;
-  if (a == 0.0) {
-    if (b != 0.0) roots[count++] = -c / b;
-  } else {
-    const double disc = b * b - 4.0 * a * c;
-    if (disc < 0.0) return std::nullopt;
-    const double h = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-    if (h != 0.0) {
-      roots[count++] = h / a;
-      roots[count++] = c / h;
-    }
-  }
+  const int count = lineQuadricRoots(a, b, c, roots);
   const double reach2 = reach * reach;
   double best = 0.0;
   bool found = false;

@@ -51,6 +51,10 @@ QuadricCoeffs fitThesisQuadric(const QuadraticPatch& fp);
 /// only the patch's bounding box (implicit_model.h) cuts off.
 void setThesisClipPlanes(const QuadraticPatch& fp, QuadricPatch& patch);
 
+/// The real roots of a s² + b s + c along a line (a linear equation where a is 0), computed
+/// without cancellation; returns how many were written to `roots` (0 to 2, unordered).
+int lineQuadricRoots(double a, double b, double c, double roots[2]);
+
 /// The root s of q(p + s·d) = 0 with the smallest |s| (the quadratic in s solved in closed form
 /// with the cancellation-free formula), or nullopt when there is no real root with
 /// |s|·|d| <= maxDistance.
