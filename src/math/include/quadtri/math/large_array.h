@@ -17,6 +17,8 @@
 #include <iterator>
 #include <vector>
 
+#include "quadtri/math/parallel.h"
+
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
@@ -43,6 +45,20 @@ inline void adviseHugePages(const void* data, size_t bytes) noexcept {
 #endif
 }
 
+/// Maps the pages of [data, data + bytes) on every thread: each 2 MiB part's first byte is
+/// written (zero), so the kernel's fault and page clearing run in parallel instead of inside
+/// the one thread that constructs the elements next. For storage that holds no object yet.
+inline void prefaultLarge(void* data, size_t bytes) {
+  if (data == nullptr || bytes < kLargeArrayBytes) return;
+  auto* base = static_cast<unsigned char*>(data);
+  const size_t parts = (bytes + kHugePageBytes - 1) / kHugePageBytes;
+  parallelFor(size_t(0), parts, [&](size_t i) {
+    unsigned char* begin = base + i * kHugePageBytes;
+    const size_t length = std::min(kHugePageBytes, bytes - i * kHugePageBytes);
+    for (size_t at = 0; at < length; at += 4096) begin[at] = 0;
+  });
+}
+
 /// v.reserve(n) for a vector-like container; a new allocation of a large array asks for huge
 /// pages before anything is written to it (the elements v held are then moved there).
 template <class Vector>
@@ -51,6 +67,7 @@ void reserveLarge(Vector& v, size_t n) {
   if (v.empty()) {
     v.reserve(n);
     adviseHugePages(v.data(), n * sizeof(typename Vector::value_type));
+    prefaultLarge(v.data(), n * sizeof(typename Vector::value_type));
     return;
   }
   Vector fresh;
