@@ -75,21 +75,41 @@ PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3
   return patch;
 }
 
+namespace {
+
+// Powers 0 to 3 of the barycentric coordinates (1 - u - v, u, v): power[c][e] = l_c^e, by
+// multiplication (std::pow took most of a tessellation's time).
+struct BarycentricPowers {
+  double power[3][4];
+  BarycentricPowers(double u, double v) {
+    const double l[3] = {1.0 - u - v, u, v};
+    for (int c = 0; c < 3; ++c) {
+      power[c][0] = 1.0;
+      power[c][1] = l[c];
+      power[c][2] = l[c] * l[c];
+      power[c][3] = power[c][2] * l[c];
+    }
+  }
+  double operator()(int i, int j, int k) const { return power[0][i] * power[1][j] * power[2][k]; }
+};
+
+}  // namespace
+
 Vec3 PnPatch::position(double u, double v) const {
-  const double l[3] = {1.0 - u - v, u, v};
+  const BarycentricPowers l(u, v);
   Vec3 sum = Vec3::Zero();
   for (int i = 0; i <= 3; ++i)
     for (int j = 0; i + j <= 3; ++j) {
       const int k = 3 - i - j;
       // Multinomial 3!/(i!j!k!): 1 at corners, 3 on edges, 6 at the centre.
       const double m = (i == 3 || j == 3 || k == 3) ? 1.0 : (i == 1 && j == 1) ? 6.0 : 3.0;
-      sum += m * std::pow(l[0], i) * std::pow(l[1], j) * std::pow(l[2], k) * b[i][j];
+      sum += m * l(i, j, k) * b[i][j];
     }
   return sum;
 }
 
 void PnPatch::derivatives(double u, double v, Vec3& du, Vec3& dv) const {
-  const double l[3] = {1.0 - u - v, u, v};
+  const BarycentricPowers l(u, v);
   du = Vec3::Zero();
   dv = Vec3::Zero();
   for (int i = 0; i <= 2; ++i)
@@ -97,7 +117,7 @@ void PnPatch::derivatives(double u, double v, Vec3& du, Vec3& dv) const {
       const int k = 2 - i - j;
       // Quadratic Bernstein 2!/(i!j!k!): 1 at corners, 2 on edges.
       const double m = (i == 2 || j == 2 || k == 2) ? 1.0 : 2.0;
-      const double basis = m * std::pow(l[0], i) * std::pow(l[1], j) * std::pow(l[2], k);
+      const double basis = m * l(i, j, k);
       du += basis * (b[i][j + 1] - b[i + 1][j]);
       dv += basis * (b[i][j] - b[i + 1][j]);  // b_{i,j,k+1} − b_{i+1,j,k}
     }
@@ -106,11 +126,10 @@ void PnPatch::derivatives(double u, double v, Vec3& du, Vec3& dv) const {
 }
 
 Vec3 PnPatch::normalField(double u, double v) const {
-  const double l[3] = {1.0 - u - v, u, v};
+  const BarycentricPowers l(u, v);
   Vec3 sum = Vec3::Zero();
   for (int i = 0; i <= 2; ++i)
-    for (int j = 0; i + j <= 2; ++j)
-      sum += std::pow(l[0], i) * std::pow(l[1], j) * std::pow(l[2], 2 - i - j) * n[i][j];
+    for (int j = 0; i + j <= 2; ++j) sum += l(i, j, 2 - i - j) * n[i][j];
   return sum;
 }
 
