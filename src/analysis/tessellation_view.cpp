@@ -33,10 +33,10 @@ Vec3 OrthoView::project(const Vec3& p) const {
 
 Canvas drawTessellationView(const SurfaceModel& model, const Tessellation& tessellation,
                             const OrthoView& view, const std::string& title) {
-  const TriangleMesh mesh = tessellate(model, tessellation);
-  const size_t perPatch = model.representation() == Representation::InputTriangles
-                              ? 1
-                              : tessellation.trianglesPerPatch();
+  const Tessellation used = resolveTessellation(model, tessellation);
+  const TriangleMesh mesh = tessellate(model, used);
+  const size_t perPatch =
+      model.representation() == Representation::InputTriangles ? 1 : used.trianglesPerPatch();
   const int width = view.size, height = view.top + view.size;
   Vec3 lo = Vec3::Constant(kInfinity), hi = Vec3::Constant(-kInfinity);
   for (size_t t = 0; t < mesh.triangleCount(); ++t)

@@ -34,7 +34,8 @@ Action addAnalyzeCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--seed", opt->analysis.crack.seed, "Seed of the crack-rate lines")
       ->capture_default_str();
-  sub->add_option("--tessellation", opt->tessellation, "Lattice level N, or 'thesis' (50x50 grid)")
+  sub->add_option("--tessellation", opt->tessellation,
+                  "Lattice level N, 'thesis' (50x50 grid), or 'auto[:TOLERANCE]' (as convert)")
       ->capture_default_str();
   addNormalFlags(sub, opt->normals,
                  "Vertex normals: file (a built-in shape's analytic ones; angle-weighted, split "

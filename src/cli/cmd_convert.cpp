@@ -34,8 +34,10 @@ Action addConvertCommand(CLI::App& app) {
                   "Output file: .obj, .ply (tessellated), .json or .qtp (patches)")
       ->required();
   sub->add_option("--tessellation", opt->tessellation,
-                  "Lattice level N (N² triangles per patch) or 'thesis' (50x50 grid, 4802 "
-                  "triangles per patch)")
+                  "Lattice level N (N² triangles per patch), 'thesis' (50x50 grid, 4802 "
+                  "triangles per patch), or 'auto[:TOLERANCE]': the lowest level up to 8 whose "
+                  "triangles stay within TOLERANCE (default 1e-4) of the bounding-box diagonal "
+                  "from the surface")
       ->capture_default_str();
   addNormalFlags(sub, opt->normals,
                  "Shading normals: file (as given; angle-weighted and split at --crease-angle "
@@ -43,15 +45,14 @@ Action addConvertCommand(CLI::App& app) {
                  "--crease-angle)");
   const auto maxMemory = addMaxMemoryOption(*sub);
   return [opt, maxMemory]() {
-    const Tessellation tessellation = Tessellation::parse(opt->tessellation);
+    const Tessellation requested = Tessellation::parse(opt->tessellation);
     // The mesh and its model must fit in --max-memory, checked before either is built.
     MemoryBudget budget;
     budget.maxBytes = maxMemory();
-    setModelBytes(budget, opt->model, tessellation,
-                  std::filesystem::path(opt->output).extension() == ".json" ||
-                          std::filesystem::path(opt->output).extension() == ".qtp"
-                      ? ModelUse::ConvertJson
-                      : ModelUse::ConvertMesh);
+    const std::filesystem::path extension = std::filesystem::path(opt->output).extension();
+    const bool writesPatches = extension == ".json" || extension == ".qtp";
+    setModelBytes(budget, opt->model, requested,
+                  writesPatches ? ModelUse::ConvertJson : ModelUse::ConvertMesh);
     BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
     if (const std::optional<std::string> repaired = repairWarning(input.mesh, opt->mesh))
       fmt::print(stderr, "warning: {}\n", *repaired);
@@ -62,10 +63,19 @@ Action addConvertCommand(CLI::App& app) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (const std::optional<std::string> warning = conversionWarning(*model, input.description))
       fmt::print(stderr, "warning: {}\n", *warning);
+    // A tessellation written as triangles is resolved to the level it uses; patch files only
+    // name the request.
+    const Tessellation tessellation =
+        writesPatches ? requested : resolveTessellation(*model, requested);
+    if (!writesPatches)
+      chargeResolvedTessellation(budget, opt->model, requested, tessellation, ModelUse::ConvertMesh,
+                                 mesh->triangleCount(), opt->mesh);
     const size_t written = writeConversion(*model, tessellation, opt->output);
-    const std::string what = written > 0 ? fmt::format("{} triangles, tessellation {}", written,
-                                                       tessellationName(tessellation))
-                                         : fmt::format("{} patches", model->patchCount());
+    const std::string what =
+        written > 0 ? fmt::format("{} triangles, tessellation {}{}", written,
+                                  tessellationName(tessellation),
+                                  requested.kind == Tessellation::Kind::Adaptive ? " (auto)" : "")
+                    : fmt::format("{} patches", model->patchCount());
     fmt::print("{}: {} model of {} ({} input triangles -> {}; converted in {:.3f} s)\n",
                opt->output, opt->model, input.description, mesh->triangleCount(), what, seconds);
     return 0;

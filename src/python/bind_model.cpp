@@ -16,12 +16,13 @@ namespace quadtri::python {
 
 Tessellation tessellationOf(py::handle value) {
   if (py::isinstance<py::bool_>(value))
-    throw py::type_error("tessellation: expected a lattice level (int) or 'thesis', got a bool");
+    throw py::type_error(
+        "tessellation: expected a lattice level (int), 'thesis' or 'auto', got a bool");
   if (py::isinstance<py::int_>(value))
     return Tessellation::parse(std::to_string(value.cast<long long>()));
   if (py::isinstance<py::str>(value)) return Tessellation::parse(value.cast<std::string>());
   throw py::type_error(
-      fmt::format("tessellation: expected a lattice level (int) or 'thesis', got a {}",
+      fmt::format("tessellation: expected a lattice level (int), 'thesis' or 'auto', got a {}",
                   std::string(py::str(py::type::of(value).attr("__name__")))));
 }
 
@@ -96,8 +97,10 @@ into V (welded: triangles that share a vertex share its index, which is how the 
 neighbours); N (n, 3) one unit normal per vertex, or N (k, 3) with NI (m, 3) per-corner normal
 indices (split normals, as load_mesh(..., split=True) returns them); without N, thesis eq. 2.8
 computes them, as the CLI does for a file without normals. tessellation: the lattice level
-(1 to 256) or "thesis" of a tessellated model's render geometry (analyze's primitives,
-memory_bytes and crack_rate, and RayScene). Raises quadtri.Error with the library's message for
+(1 to 256), "thesis", or "auto" / "auto:TOLERANCE" (the lowest level up to 8 whose triangles
+stay within TOLERANCE, default 1e-4, of the bounding-box diagonal from the surface; the
+`tessellation` property then gives the level it picked) of a tessellated model's render geometry
+(analyze's primitives, memory_bytes and crack_rate, and RayScene). Raises quadtri.Error with the library's message for
 an unknown model or a mesh it rejects.
 )doc")
       .def(py::init([](const std::string& name, py::handle V, py::handle F, py::handle N,
@@ -111,6 +114,7 @@ an unknown model or a mesh it rejects.
              model.model = makeModel(name, std::move(mesh));
              model.convertSeconds =
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+             model.tessellation = resolveTessellation(*model.model, model.tessellation);
              return model;
            }),
            py::arg("name"), py::arg("V"), py::arg("F"), py::arg("N") = py::none(),
@@ -178,7 +182,7 @@ corner 1, (0, 1) corner 2. t, u, v broadcast against each other; returns P, N of
           },
           py::arg("level") = py::none(), py::arg("split") = false, R"doc(
 The model's surface as triangles, V, F, N, as `quadtri convert MESH -o OUT.obj` writes it: a lattice
-of level N (N^2 triangles per patch) or "thesis" (default: the model's tessellation), welded where
+of level N (N^2 triangles per patch), "thesis" or "auto" (default: the model's tessellation), welded where
 the model shares its edges, with the surface normals; flat, shading and shading-offset return their
 input triangles (split normals as load_mesh treats them).
 )doc")

@@ -16,8 +16,17 @@
 namespace quadtri {
 
 std::string tessellationName(const Tessellation& tessellation) {
-  return tessellation.kind == Tessellation::Kind::ThesisGrid ? "thesis"
-                                                             : std::to_string(tessellation.level);
+  switch (tessellation.kind) {
+    case Tessellation::Kind::ThesisGrid:
+      return "thesis";
+    case Tessellation::Kind::Adaptive:
+      return tessellation.tolerance == Tessellation::kDefaultTolerance
+                 ? "auto"
+                 : fmt::format("auto:{}", tessellation.tolerance);
+    case Tessellation::Kind::Lattice:
+      break;
+  }
+  return std::to_string(tessellation.level);
 }
 
 namespace {

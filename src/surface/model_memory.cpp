@@ -1,5 +1,7 @@
 #include "quadtri/surface/model_memory.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "model_cost.h"
@@ -52,6 +54,20 @@ CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use) {
   // defaultSubPatchBudget's share per piece and its cap, on G1Model's three pieces per triangle.
   return {uint64_t(double(3 * kSubPatchesPerPiece) * cost->perRegion),
           uint64_t(double(kMaxSubPatchBudget) * cost->perRegion)};
+}
+
+void chargeResolvedTessellation(MemoryBudget& budget, std::string_view model,
+                                const Tessellation& requested, const Tessellation& resolved,
+                                ModelUse use, uint64_t triangles, const std::string& name) {
+  if (requested.kind != Tessellation::Kind::Adaptive) return;
+  const uint64_t charged = modelBytesPerTriangle(model, requested, use);
+  const uint64_t needed = modelBytesPerTriangle(model, resolved, use);
+  if (needed <= charged) return;
+  MemoryBudget extra;
+  extra.bytesPerTriangle = needed - charged;
+  chargeMemory(
+      budget, modelBytes(extra, triangles), name,
+      fmt::format("tessellating its {} triangles at level {} (auto)", triangles, resolved.level));
 }
 
 void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellation& tessellation,

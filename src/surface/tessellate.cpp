@@ -1,10 +1,12 @@
 #include "quadtri/surface/tessellate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include "quadtri/math/error.h"
 #include "quadtri/math/large_array.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 
 namespace quadtri {
@@ -98,22 +100,79 @@ PatchPattern thesisGridPattern(int m) {
 
 Tessellation Tessellation::parse(const std::string& text) {
   if (text == "thesis") return thesis();
+  if (text == "auto") return adaptive();
   try {
     size_t used = 0;
-    const int level = std::stoi(text, &used);
-    if (used == text.size() && level >= 1 && level <= 256) return {Kind::Lattice, level};
+    if (text.starts_with("auto:")) {
+      const std::string number = text.substr(5);
+      const double tolerance = std::stod(number, &used);
+      if (used == number.size() && std::isfinite(tolerance) && tolerance > 0.0 && tolerance < 1.0)
+        return adaptive(tolerance);
+    } else {
+      const int level = std::stoi(text, &used);
+      if (used == text.size() && level >= 1 && level <= 256) return {Kind::Lattice, level};
+    }
   } catch (const std::exception&) {
   }
-  fail("tessellation '{}': expected a lattice level from 1 to 256, or 'thesis'", text);
+  fail(
+      "tessellation '{}': expected a lattice level from 1 to 256, 'thesis', 'auto' or "
+      "'auto:TOLERANCE' (a share of the bounding-box diagonal above 0 and below 1)",
+      text);
 }
 
 size_t Tessellation::trianglesPerPatch() const {
+  if (kind == Kind::Adaptive) return 1;
   return kind == Kind::ThesisGrid ? size_t(2 * (level - 1) * (level - 1)) : size_t(level * level);
 }
 
-TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellation) {
+double levelOneDeviation(const SurfaceModel& model) {
+  // The distance e(u, v) between a quadratic patch and the flat triangle through its corners is
+  // a quadratic vanishing at the corners, e = uv·A + vw·B + wu·C (w = 1 - u - v): A/4, B/4, C/4
+  // at the edges' midpoints, and |e| <= (uv + vw + wu)·max(|A|, |B|, |C|) <= max/3. So 4/3 of
+  // the largest midpoint distance bounds it; the centroid is sampled too, for the patches of
+  // higher degree (PN triangles, the G1 pieces), for which this is an estimate.
+  constexpr double kMid[3][2] = {{0.5, 0.0}, {0.5, 0.5}, {0.0, 0.5}};
+  const auto patchDeviation = [&](size_t t) {
+    const Vec3 c0 = model.evaluate(t, 0.0, 0.0).position;
+    const Vec3 c1 = model.evaluate(t, 1.0, 0.0).position;
+    const Vec3 c2 = model.evaluate(t, 0.0, 1.0).position;
+    const auto distance = [&](double u, double v) {
+      return (model.evaluate(t, u, v).position - ((1.0 - u - v) * c0 + u * c1 + v * c2)).norm();
+    };
+    double midpoints = 0.0;
+    for (const auto& m : kMid) midpoints = std::max(midpoints, distance(m[0], m[1]));
+    return std::max(4.0 / 3.0 * midpoints, distance(1.0 / 3.0, 1.0 / 3.0));
+  };
+  return parallelReduce(
+      tbb::blocked_range<size_t>(0, model.patchCount(), 1024), 0.0,
+      [&](const tbb::blocked_range<size_t>& range, double worst) {
+        for (size_t t = range.begin(); t != range.end(); ++t) {
+          const double d = patchDeviation(t);
+          // A patch whose points are not finite counts as the worst there is.
+          worst = std::isfinite(d) ? std::max(worst, d) : kInfinity;
+        }
+        return worst;
+      },
+      [](double a, double b) { return std::max(a, b); });
+}
+
+Tessellation resolveTessellation(const SurfaceModel& model, const Tessellation& tessellation) {
+  if (tessellation.kind != Tessellation::Kind::Adaptive) return tessellation;
+  const int highest = std::max(1, tessellation.level);
+  if (model.representation() == Representation::InputTriangles || model.patchCount() == 0)
+    return {Tessellation::Kind::Lattice, 1};
+  const Bounds3 box = model.mesh().bounds();
+  const double allowed = tessellation.tolerance * (box.hi - box.lo).norm();
+  const double deviation = levelOneDeviation(model);
+  int level = 1;
+  while (level < highest && !(deviation <= allowed * double(level) * double(level))) ++level;
+  return {Tessellation::Kind::Lattice, level};
+}
+
+TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {
   const TriangleMesh& mesh = model.mesh();
   if (model.representation() == Representation::InputTriangles) return mesh;
+  const Tessellation tessellation = resolveTessellation(model, requested);
   const PatchPattern pattern = tessellation.kind == Tessellation::Kind::ThesisGrid
                                    ? thesisGridPattern(tessellation.level)
                                    : latticePattern(tessellation.level);

@@ -123,8 +123,13 @@ TEST(CliLimits, MaxMemoryRefusesMeshesWhoseModelWouldNotFit) {
 // tri.obj (one triangle) and scene.xml rendering it at $res² pixels (default 64), 1 spp.
 void writeTriangleScene(const fs::path& dir) {
   std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  // The same triangle with normals that curve it.
+  std::ofstream(dir / "curved.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn -0.3 -0.3 1\nvn 0.3 0 1\n"
+                                       "vn 0 0.3 1\nf 1//1 2//2 3//3\n";
   std::ofstream(dir / "scene.xml") << R"(<scene version="3.0.0">
   <default name="res" value="64"/>
+  <default name="mesh" value="tri.obj"/>
+  <default name="tess" value="auto"/>
   <sensor type="perspective">
     <float name="fov" value="40"/>
     <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
@@ -132,7 +137,9 @@ void writeTriangleScene(const fs::path& dir) {
     <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
   </sensor>
   <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>
-  <shape type="obj"><string name="filename" value="tri.obj"/></shape>
+  <shape type="obj">
+    <string name="filename" value="$mesh"/><string name="tessellation" value="$tess"/>
+  </shape>
 </scene>
 )";
 }
@@ -149,16 +156,36 @@ TEST(CliLimits, RenderRefusesAnImageOrMeshOverMaxMemory) {
       << film.stderrText();
   EXPECT_LT(film.cpuSeconds(), 1.0);
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
-  // 32² pixels take 47 KiB; the triangle's quadric-param lattice takes the rest.
-  CliProcess mesh({"render", (dir / "scene.xml").string(), "-D", "res=32", "--model",
-                   "quadric-param", "--max-memory", "50K", "-o", (dir / "out.exr").string()},
-                  dir, "mesh");
+  // 32² pixels take 47 KiB; the triangle's quadric-param lattice of level 8 takes the rest.
+  CliProcess mesh(
+      {"render", (dir / "scene.xml").string(), "-D", "res=32", "-D", "tess=8", "--model",
+       "quadric-param", "--max-memory", "50K", "-o", (dir / "out.exr").string()},
+      dir, "mesh");
   EXPECT_EQ(mesh.wait(), 1);
   EXPECT_NE(mesh.stderrText().find("tri.obj: loading its 3 vertices"), std::string::npos)
       << mesh.stderrText();
   EXPECT_NE(mesh.stderrText().find("on top of the 47.0 KiB"), std::string::npos)
       << mesh.stderrText();
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
+  // With `auto` the mesh is charged at level 1 when it is loaded, and the level it picks
+  // afterwards: 8 for the curved triangle, refused before its lattice is built; 1 for the flat
+  // one, which fits.
+  CliProcess curved(
+      {"render", (dir / "scene.xml").string(), "-D", "res=32", "-D", "mesh=curved.obj", "--model",
+       "quadric-param", "--max-memory", "50K", "-o", (dir / "out.exr").string()},
+      dir, "curved");
+  EXPECT_EQ(curved.wait(), 1);
+  EXPECT_NE(curved.stderrText().find("(quadric-param): tessellating its 1 triangles at level 8 "
+                                     "(auto) needs about 10."),
+            std::string::npos)
+      << curved.stderrText();
+  EXPECT_FALSE(fs::exists(dir / "out.exr"));
+  CliProcess flat({"render", (dir / "scene.xml").string(), "-D", "res=32", "--model",
+                   "quadric-param", "--max-memory", "50K", "-o", (dir / "out.exr").string()},
+                  dir, "flat");
+  EXPECT_EQ(flat.wait(), 0) << flat.stderrText();
+  EXPECT_TRUE(fs::exists(dir / "out.exr"));
+  fs::remove(dir / "out.exr");
   EXPECT_TRUE(temporaryFiles(dir).empty());
   fs::remove_all(dir);
 }

@@ -101,6 +101,22 @@ def test_tessellate_matches_convert(cli, tmp_path, model):
     np.testing.assert_allclose(TN[TF], N[NI], rtol=0, atol=1e-7)
 
 
+@pytest.mark.parametrize("subdivisions, level", [(0, 8), (4, 2), (6, 1)])
+def test_auto_tessellation_picks_the_level_convert_picks(cli, tmp_path, subdivisions, level):
+    out = tmp_path / "t.ply"
+    spec = f"icosphere:{subdivisions}"
+    printed = cli("convert", spec, "--model", "pn", "--tessellation", "auto", "-o", out).stdout
+    assert f"tessellation {level} (auto)" in printed
+    shape = quadtri.shape("icosphere", level=subdivisions)
+    m = quadtri.Model("pn", *shape, tessellation="auto")
+    assert m.tessellation == level
+    V, F, N = quadtri.load_mesh(out)
+    TV, TF, TN = m.tessellate()
+    assert TF.shape == F.shape
+    np.testing.assert_allclose(TV[TF], V[F], rtol=0, atol=1e-7)
+    assert quadtri.Model("pn", *shape, tessellation="auto:0.9").tessellation == 1
+
+
 def test_evaluate_reproduces_corners_and_broadcasts():
     V, F, N = quadtri.shape("icosphere", level=1)
     m = quadtri.Model("quadric-implicit-robust", V, F, N)

@@ -58,6 +58,32 @@ TEST(SceneBuilder, PlacesBuiltInShapesLikeMitsuba) {
   EXPECT_EQ(b.scene->primitiveCount(), 3u);
 }
 
+// A mesh file's tessellated model is tessellated at the level `auto` picks unless the shape
+// names one: the highest (8) for a coarse mesh, 1 for a dense one (an icosphere of 81,920
+// triangles strays by 1e-4 of its diagonal at most), and the level given otherwise.
+TEST(SceneBuilder, TessellatedModelsPickTheirLevelUnlessTheShapeNamesOne) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "quadtri_scene_builder_tessellation";
+  std::filesystem::create_directories(dir);
+  saveMesh(makeBuiltin("icosahedron").mesh, dir / "coarse.ply");
+  saveMesh(parseBuiltinSpec("icosphere:6")->mesh, dir / "dense.ply");
+  const auto primitives = [&](const std::string& file, const std::string& tessellation) {
+    const std::string named =
+        tessellation.empty() ? ""
+                             : R"(<string name="tessellation" value=")" + tessellation + R"("/>)";
+    return build(std::string(kSensor) + R"(<shape type="ply"><string name="filename" value=")" +
+                     file + R"("/><string name="model" value="pn"/>)" + named + "</shape>",
+                 dir / "s.xml")
+        .scene->primitiveCount();
+  };
+  EXPECT_EQ(primitives("coarse.ply", ""), 20u * 64u);
+  EXPECT_EQ(primitives("dense.ply", ""), 81920u);
+  EXPECT_EQ(primitives("dense.ply", "auto"), 81920u);
+  EXPECT_EQ(primitives("dense.ply", "2"), 4u * 81920u);
+  EXPECT_EQ(primitives("coarse.ply", "auto:0.5"), 20u);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SceneBuilder, ModelOverrideAppliesToMeshesOnly) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "quadtri_scene_builder";

@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/bezier_intersect.h"
@@ -441,6 +442,39 @@ TEST(ModelMemory, EveryModelHasItsOwnCost) {
     dearest = std::max(dearest, b);
   }
   EXPECT_EQ(modelBytesPerTriangle("no-such-model", fine, ModelUse::Render), dearest);
+}
+
+// An automatic tessellation is charged at level 1 before the mesh is loaded, and what the level
+// it picks costs beyond that once it is known; a charge over the limit is refused with the
+// level named, leaving the budget as it was.
+TEST(ModelMemory, AutoTessellationIsChargedAtTheLevelItPicks) {
+  const Tessellation automatic = Tessellation::adaptive();
+  const Tessellation one{Tessellation::Kind::Lattice, 1}, five{Tessellation::Kind::Lattice, 5};
+  for (const ModelUse use : {ModelUse::Render, ModelUse::ConvertMesh}) {
+    EXPECT_EQ(modelBytesPerTriangle("pn", automatic, use), modelBytesPerTriangle("pn", one, use));
+    MemoryBudget budget;
+    setModelBytes(budget, "pn", automatic, use);
+    chargeMemory(budget, modelBytes(budget, 1000), "mesh", "loading");
+    const uint64_t before = budget.usedBytes;
+    chargeResolvedTessellation(budget, "pn", automatic, five, use, 1000, "mesh");
+    EXPECT_EQ(budget.usedBytes - before, 1000 * (modelBytesPerTriangle("pn", five, use) -
+                                                 modelBytesPerTriangle("pn", one, use)));
+    // Level 1, or a tessellation that was not automatic, costs nothing more.
+    const uint64_t charged = budget.usedBytes;
+    chargeResolvedTessellation(budget, "pn", automatic, one, use, 1000, "mesh");
+    chargeResolvedTessellation(budget, "pn", five, five, use, 1000, "mesh");
+    EXPECT_EQ(budget.usedBytes, charged);
+    budget.maxBytes = charged + 10;
+    try {
+      chargeResolvedTessellation(budget, "pn", automatic, five, use, 1000, "cow.off");
+      ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("cow.off: tessellating its 1000 triangles at level 5"),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(budget.usedBytes, charged);
+  }
 }
 
 // quadric-g1's regions are charged as many as defaultSubPatchBudget gives its three pieces per

@@ -1,6 +1,9 @@
 // Tessellations of the curved models: counts, welding and closedness.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/model.h"
@@ -58,6 +61,116 @@ TEST(SurfaceTessellation, Eq42IsNotWelded) {
                                       Tessellation{Tessellation::Kind::Lattice, n});
   EXPECT_EQ(out.positions.size(), mesh->triangleCount() * size_t((n + 1) * (n + 2) / 2));
   EXPECT_EQ(MeshTopology(out).boundaryEdgeCount(), mesh->triangleCount() * size_t(3 * n));
+}
+
+TEST(SurfaceTessellation, AutoParsesItsToleranceAndRefusesAnythingElse) {
+  const Tessellation automatic = Tessellation::parse("auto");
+  EXPECT_EQ(automatic.kind, Tessellation::Kind::Adaptive);
+  EXPECT_EQ(automatic.tolerance, Tessellation::kDefaultTolerance);
+  EXPECT_EQ(automatic.level, Tessellation::kMaxAdaptiveLevel);
+  EXPECT_EQ(automatic.trianglesPerPatch(), 1u);  // charged at level 1 until it is resolved
+  EXPECT_EQ(Tessellation::parse("auto:2.5e-6").tolerance, 2.5e-6);
+  for (const char* bad : {"auto:", "auto:0", "auto:-1e-4", "auto:1", "auto:nan", "auto:inf",
+                          "auto:1e-4x", "autox", "auto:0x1p-10q", "0", "257"}) {
+    SCOPED_TRACE(bad);
+    try {
+      (void)Tessellation::parse(bad);
+      ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("'auto:TOLERANCE'"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The picked level is the lowest whose estimate, levelOneDeviation / n², is within the
+// tolerance (or the highest level allowed): coarse meshes keep the highest, dense ones get few
+// triangles per patch, and the choice does not depend on the mesh's scale.
+TEST(SurfaceTessellation, AutoPicksTheLowestLevelWithinItsTolerance) {
+  for (const char* name : {"quadric-param", "pn", "phong", "nagata", "quadric-edges"})
+    for (int level = 0; level <= 5; ++level)
+      for (const double tolerance : {1e-3, 1e-4, 1e-5}) {
+        SCOPED_TRACE(::testing::Message()
+                     << name << " icosphere " << level << " tolerance " << tolerance);
+        const auto mesh = icosphere(level);
+        const auto model = makeModel(name, mesh);
+        const Tessellation picked = resolveTessellation(*model, Tessellation::adaptive(tolerance));
+        ASSERT_EQ(picked.kind, Tessellation::Kind::Lattice);
+        const int n = picked.level;
+        ASSERT_GE(n, 1);
+        ASSERT_LE(n, Tessellation::kMaxAdaptiveLevel);
+        const Bounds3 box = mesh->bounds();
+        const double allowed = tolerance * (box.hi - box.lo).norm();
+        const double deviation = levelOneDeviation(*model);
+        ASSERT_GT(deviation, 0.0);
+        if (n < Tessellation::kMaxAdaptiveLevel) {
+          EXPECT_LE(deviation, allowed * n * n);
+        }
+        if (n > 1) {
+          EXPECT_GT(deviation, allowed * (n - 1) * (n - 1));
+        }
+        // A sphere's patches bulge by about (edge length)²/8: halving the edges (one icosphere
+        // level) quarters the deviation.
+        if (level == 0) {
+          EXPECT_EQ(n, Tessellation::kMaxAdaptiveLevel);
+        }
+        if (level == 5 && tolerance == 1e-3) {
+          EXPECT_EQ(n, 1);
+        }
+        // The same choice at any scale.
+        for (const double scale : {1e-6, 1e6}) {
+          TriangleMesh scaled = *mesh;
+          for (Vec3& p : scaled.positions) p *= scale;
+          const auto scaledModel = makeModel(name, std::make_shared<const TriangleMesh>(scaled));
+          EXPECT_EQ(resolveTessellation(*scaledModel, Tessellation::adaptive(tolerance)).level, n)
+              << "scale " << scale;
+        }
+      }
+}
+
+// For a quadratic patch (quadric-param) the estimate is a bound: every lattice triangle of the
+// picked level lies within the tolerance of the surface, here checked at its edges' midpoints
+// and its centroid, where a quadratic's distance from its flat interpolant peaks.
+TEST(SurfaceTessellation, AutoLatticeOfAQuadraticModelStaysWithinItsTolerance) {
+  for (const char* spec : {"ellipsoid:1,0.7,0.5,4", "torus:1,0.35,64,32", "icosphere:4", "genus2"})
+    for (const double tolerance : {1e-3, 1e-4}) {
+      SCOPED_TRACE(::testing::Message() << spec << " tolerance " << tolerance);
+      const auto mesh = std::make_shared<const TriangleMesh>(parseBuiltinSpec(spec)->mesh);
+      const auto model = makeModel("quadric-param", mesh);
+      const int n = resolveTessellation(*model, Tessellation::adaptive(tolerance)).level;
+      // At the highest level the tolerance may be out of reach (genus2 at 1e-4).
+      const bool highest = n == Tessellation::kMaxAdaptiveLevel;
+      const Bounds3 box = mesh->bounds();
+      const double allowed = tolerance * (box.hi - box.lo).norm();
+      double worst = 0.0;
+      const auto at = [&](size_t t, double u, double v) {
+        return model->evaluate(t, u / n, v / n).position;
+      };
+      for (size_t t = 0; t < mesh->triangleCount(); ++t)
+        for (int a = 0; a < n; ++a)
+          for (int b = 0; a + b < n; ++b)
+            for (int flip = 0; flip < 2 && (flip == 0 || a + b + 2 <= n); ++flip) {
+              // Lattice triangle (upright, or flipped) with corners in lattice units.
+              const double c[3][2] = {{double(a + flip), double(b + flip)},
+                                      {double(a + 1 - flip), double(b + flip)},
+                                      {double(a + flip), double(b + 1 - flip)}};
+              const Vec3 p[3] = {at(t, c[0][0], c[0][1]), at(t, c[1][0], c[1][1]),
+                                 at(t, c[2][0], c[2][1])};
+              const double w[4][3] = {
+                  {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1 / 3.0, 1 / 3.0, 1 / 3.0}};
+              for (const auto& s : w) {
+                const double u = s[0] * c[0][0] + s[1] * c[1][0] + s[2] * c[2][0];
+                const double v = s[0] * c[0][1] + s[1] * c[1][1] + s[2] * c[2][1];
+                const Vec3 flat = s[0] * p[0] + s[1] * p[1] + s[2] * p[2];
+                worst = std::max(worst, (at(t, u, v) - flat).norm());
+              }
+            }
+      if (!highest) {
+        EXPECT_LE(worst, allowed * (1.0 + 1e-9));
+        EXPECT_GT(worst, 0.05 * allowed);  // and the level is not needlessly high
+      }
+      // The estimate bounds what the lattice does, not only after rounding the level up.
+      EXPECT_LE(worst, levelOneDeviation(*model) / (n * n) * (1.0 + 1e-9));
+    }
 }
 
 }  // namespace

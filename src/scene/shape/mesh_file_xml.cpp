@@ -17,13 +17,13 @@ namespace quadtri {
 
 std::string MeshFileShapeParams::toString() const {
   return fmt::format(" filename={} model={} tessellation={} face_normals={}", filename.string(),
-                     model, tessellation.empty() ? "default" : tessellation, faceNormals);
+                     model, tessellation.empty() ? "auto" : tessellation, faceNormals);
 }
 
 void MeshFileShapeParams::build(ShapeBuildContext& context) const {
   const std::string& chosen = context.modelOverride ? *context.modelOverride : model;
   const Tessellation tess =
-      tessellation.empty() ? Tessellation{} : Tessellation::parse(tessellation);
+      tessellation.empty() ? Tessellation::adaptive() : Tessellation::parse(tessellation);
   setModelBytes(context.budget, chosen, tess, ModelUse::Render);
   TriangleMesh mesh = loadMesh(filename, normals, &context.budget);
   if (faceNormals) {

@@ -3,6 +3,7 @@
 #include "quadtri/render/render_scene.h"
 #include "quadtri/scene/scene_description.h"
 #include "quadtri/surface/model.h"
+#include "quadtri/surface/model_memory.h"
 
 namespace quadtri {
 
@@ -26,7 +27,10 @@ std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, Tri
   transformMesh(mesh, desc.toWorld, desc.flipNormals);
   std::shared_ptr<const SurfaceModel> converted =
       makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
-  context.scene.addModel(converted, tessellation, context.bsdf, desc.areaRadiance, context.name);
+  const Tessellation resolved = resolveTessellation(*converted, tessellation);
+  chargeResolvedTessellation(context.budget, model, tessellation, resolved, ModelUse::Render,
+                             converted->patchCount(), fmt::format("{} ({})", desc.location, model));
+  context.scene.addModel(converted, resolved, context.bsdf, desc.areaRadiance, context.name);
   return converted;
 }
 

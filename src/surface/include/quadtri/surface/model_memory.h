@@ -40,4 +40,12 @@ CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use);
 void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellation& tessellation,
                    ModelUse use, bool dearest = false);
 
+/// For an Adaptive `requested` tessellation, which setModelBytes charges at level 1: charges
+/// `budget` what the lattice it resolved to (`resolved`) costs beyond that, on `triangles` input
+/// triangles of `model` (`name` names the mesh in the error). Throws as chargeMemory does when
+/// that is over the limit, before the tessellation is built. Nothing for other tessellations.
+void chargeResolvedTessellation(MemoryBudget& budget, std::string_view model,
+                                const Tessellation& requested, const Tessellation& resolved,
+                                ModelUse use, uint64_t triangles, const std::string& name);
+
 }  // namespace quadtri

@@ -20,7 +20,7 @@ namespace quadtri {
 struct MeshFileShapeParams final : SceneShapeParams {
   std::filesystem::path filename;  ///< resolved against the scene file's folder
   std::string model = "shading";   ///< a name from modelNames()
-  /// "N" or "thesis" for Tessellation::parse; empty for the default.
+  /// "N", "thesis", "auto" or "auto:TOLERANCE" for Tessellation::parse; empty for "auto".
   std::string tessellation;
   /// The shading normals (`normals`: file, average or angle; `crease_angle` in degrees, for
   /// normals computed angle-weighted: a file without normals, or `angle`).
