@@ -83,6 +83,10 @@ SurfacePoint NagataModel::evaluate(size_t t, double u, double v) const {
   return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
 }
 
+Vec3 NagataModel::position(size_t t, double u, double v) const {
+  return patches_[t].position(u, v);
+}
+
 nlohmann::json NagataModel::patchJson(size_t t) const {
   const QuadraticPatch& patch = patches_[t];
   nlohmann::json out;

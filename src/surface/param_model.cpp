@@ -21,6 +21,10 @@ SurfacePoint ParamModel::evaluate(size_t t, double u, double v) const {
   return {p.position(u, v), orientedPatchNormal(mesh(), t, u, v, pu, pv)};
 }
 
+Vec3 ParamModel::position(size_t t, double u, double v) const {
+  return patch(t).position(u, v);
+}
+
 nlohmann::json ParamModel::patchJson(size_t t) const {
   return quadraticPatchJson(patch(t));
 }

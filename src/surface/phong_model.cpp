@@ -40,6 +40,10 @@ SurfacePoint PhongModel::evaluate(size_t t, double u, double v) const {
   return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
 }
 
+Vec3 PhongModel::position(size_t t, double u, double v) const {
+  return patches_[t].position(u, v);
+}
+
 nlohmann::json PhongModel::patchJson(size_t t) const {
   const LocalTriangle tri = localTriangle(mesh(), t);
   nlohmann::json j;

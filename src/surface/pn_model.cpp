@@ -151,6 +151,10 @@ SurfacePoint PnModel::evaluate(size_t t, double u, double v) const {
   return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
 }
 
+Vec3 PnModel::position(size_t t, double u, double v) const {
+  return patches_[t].position(u, v);
+}
+
 Vec3 PnModel::pnNormal(size_t t, double u, double v) const {
   const Vec3 field = patches_[t].normalField(u, v);
   const double len = field.norm();

@@ -133,11 +133,11 @@ double levelOneDeviation(const SurfaceModel& model) {
   // higher degree (PN triangles, the G1 pieces), for which this is an estimate.
   constexpr double kMid[3][2] = {{0.5, 0.0}, {0.5, 0.5}, {0.0, 0.5}};
   const auto patchDeviation = [&](size_t t) {
-    const Vec3 c0 = model.evaluate(t, 0.0, 0.0).position;
-    const Vec3 c1 = model.evaluate(t, 1.0, 0.0).position;
-    const Vec3 c2 = model.evaluate(t, 0.0, 1.0).position;
+    const Vec3 c0 = model.position(t, 0.0, 0.0);
+    const Vec3 c1 = model.position(t, 1.0, 0.0);
+    const Vec3 c2 = model.position(t, 0.0, 1.0);
     const auto distance = [&](double u, double v) {
-      return (model.evaluate(t, u, v).position - ((1.0 - u - v) * c0 + u * c1 + v * c2)).norm();
+      return (model.position(t, u, v) - ((1.0 - u - v) * c0 + u * c1 + v * c2)).norm();
     };
     double midpoints = 0.0;
     for (const auto& m : kMid) midpoints = std::max(midpoints, distance(m[0], m[1]));

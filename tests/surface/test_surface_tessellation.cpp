@@ -63,6 +63,20 @@ TEST(SurfaceTessellation, Eq42IsNotWelded) {
   EXPECT_EQ(MeshTopology(out).boundaryEdgeCount(), mesh->triangleCount() * size_t(3 * n));
 }
 
+// position() is evaluate()'s position, bit for bit, for every model (the parametric ones skip
+// the normal).
+TEST(SurfaceTessellation, PositionIsTheEvaluatedPosition) {
+  const auto mesh =
+      std::make_shared<const TriangleMesh>(parseBuiltinSpec("torus:1,0.35,12,8")->mesh);
+  for (const std::string& name : modelNames()) {
+    SCOPED_TRACE(name);
+    const auto model = makeModel(name, mesh);
+    for (size_t t = 0; t < mesh->triangleCount(); t += 7)
+      for (const auto& [u, v] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {0.25, 0.5}})
+        EXPECT_EQ(model->position(t, u, v), model->evaluate(t, u, v).position) << t;
+  }
+}
+
 TEST(SurfaceTessellation, AutoParsesItsToleranceAndRefusesAnythingElse) {
   const Tessellation automatic = Tessellation::parse("auto");
   EXPECT_EQ(automatic.kind, Tessellation::Kind::Adaptive);

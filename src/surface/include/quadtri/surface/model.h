@@ -48,6 +48,8 @@ class SurfaceModel {
 
   /// Position and unit geometric normal of patch t at barycentric (u, v).
   virtual SurfacePoint evaluate(size_t t, double u, double v) const = 0;
+  /// evaluate(t, u, v).position; the parametric models skip the normal.
+  virtual Vec3 position(size_t t, double u, double v) const { return evaluate(t, u, v).position; }
 
   virtual Representation representation() const { return Representation::Tessellated; }
   /// True when neighbouring patches share their boundary curves, so a tessellation may weld

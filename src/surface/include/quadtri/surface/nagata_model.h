@@ -46,6 +46,7 @@ class NagataModel final : public SurfaceModel {
   explicit NagataModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "nagata"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
+  Vec3 position(size_t t, double u, double v) const override;
   nlohmann::json patchJson(size_t t) const override;
 
   /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).

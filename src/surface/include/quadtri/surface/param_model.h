@@ -23,6 +23,7 @@ class ParamModel final : public SurfaceModel {
   explicit ParamModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "quadric-param"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
+  Vec3 position(size_t t, double u, double v) const override;
   nlohmann::json patchJson(size_t t) const override;
 
   /// The quadratic Bézier triangle of triangle t.

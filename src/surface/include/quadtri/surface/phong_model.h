@@ -33,6 +33,7 @@ class PhongModel final : public SurfaceModel {
   explicit PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha = 0.75);
   std::string_view name() const override { return "phong"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
+  Vec3 position(size_t t, double u, double v) const override;
   nlohmann::json patchJson(size_t t) const override;
   double alpha() const { return alpha_; }
   /// The quadratic Bézier form of patch t (edge k joins corners k and k+1).

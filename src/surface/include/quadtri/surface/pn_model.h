@@ -62,6 +62,7 @@ class PnModel final : public SurfaceModel {
   explicit PnModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "pn"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
+  Vec3 position(size_t t, double u, double v) const override;
   nlohmann::json patchJson(size_t t) const override;
 
   /// The paper's quadratic normal field of patch t at (u, v), normalised (falls back to the
