@@ -61,8 +61,14 @@ Action addAnalyzeCommand(CLI::App& app) {
     // the heatmaps' views tessellate the thesis' grid) must fit in --max-memory.
     MemoryBudget budget;
     budget.maxBytes = maxMemory();
+    // `auto` is charged at the highest level it may pick: analyze builds every model in turn
+    // and charges the mesh once, before any is built.
+    const Tessellation& requested = opt->analysis.tessellation;
+    const Tessellation charged = requested.kind == Tessellation::Kind::Adaptive
+                                     ? Tessellation{Tessellation::Kind::Lattice, requested.level}
+                                     : requested;
     for (const std::string& name : names) {
-      setModelBytes(budget, name, opt->analysis.tessellation, ModelUse::Render, /*dearest=*/true);
+      setModelBytes(budget, name, charged, ModelUse::Render, /*dearest=*/true);
       if (!opt->heatmaps.empty())
         setModelBytes(budget, name, Tessellation::thesis(), ModelUse::ConvertMesh,
                       /*dearest=*/true);

@@ -29,7 +29,7 @@ Tessellation tessellationOf(py::handle value) {
 namespace {
 
 py::object tessellationValue(const Tessellation& t) {
-  if (t.kind == Tessellation::Kind::ThesisGrid) return py::str("thesis");
+  if (t.kind != Tessellation::Kind::Lattice) return py::str(tessellationName(t));
   return py::int_(t.level);
 }
 
@@ -98,8 +98,9 @@ neighbours); N (n, 3) one unit normal per vertex, or N (k, 3) with NI (m, 3) per
 indices (split normals, as load_mesh(..., split=True) returns them); without N, thesis eq. 2.8
 computes them, as the CLI does for a file without normals. tessellation: the lattice level
 (1 to 256), "thesis", or "auto" / "auto:TOLERANCE" (the lowest level up to 8 whose triangles
-stay within TOLERANCE, default 1e-4, of the bounding-box diagonal from the surface; the
-`tessellation` property then gives the level it picked) of a tessellated model's render geometry
+stay within TOLERANCE, default 1e-4, of the bounding-box diagonal from the surface; for a
+tessellated model the `tessellation` property then gives the level it picked, the others pick it
+when tessellate() is called) of a tessellated model's render geometry
 (analyze's primitives, memory_bytes and crack_rate, and RayScene). Raises quadtri.Error with the library's message for
 an unknown model or a mesh it rejects.
 )doc")
@@ -114,7 +115,10 @@ an unknown model or a mesh it rejects.
              model.model = makeModel(name, std::move(mesh));
              model.convertSeconds =
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-             model.tessellation = resolveTessellation(*model.model, model.tessellation);
+             // A tessellated model renders its lattice: its automatic level is picked now. The
+             // others resolve it when they are tessellated (tessellate()).
+             if (model.model->representation() == Representation::Tessellated)
+               model.tessellation = resolveTessellation(*model.model, model.tessellation);
              return model;
            }),
            py::arg("name"), py::arg("V"), py::arg("F"), py::arg("N") = py::none(),
@@ -253,9 +257,9 @@ uses the built-in shape's), "mesh" set to mesh_name.
       .def("__repr__", [](const PyModel& p) {
         return fmt::format("quadtri.Model('{}', {} patches, tessellation={})", p.model->name(),
                            p.model->patchCount(),
-                           p.tessellation.kind == Tessellation::Kind::ThesisGrid
-                               ? std::string("'thesis'")
-                               : std::to_string(p.tessellation.level));
+                           p.tessellation.kind == Tessellation::Kind::Lattice
+                               ? std::to_string(p.tessellation.level)
+                               : "'" + tessellationName(p.tessellation) + "'");
       });
 }
 

@@ -115,6 +115,10 @@ def test_auto_tessellation_picks_the_level_convert_picks(cli, tmp_path, subdivis
     assert TF.shape == F.shape
     np.testing.assert_allclose(TV[TF], V[F], rtol=0, atol=1e-7)
     assert quadtri.Model("pn", *shape, tessellation="auto:0.9").tessellation == 1
+    # A model traced as it is picks its level only when it is tessellated.
+    implicit = quadtri.Model("quadric-implicit", *shape, tessellation="auto")
+    assert implicit.tessellation == "auto"
+    assert "tessellation='auto'" in repr(implicit)
 
 
 def test_evaluate_reproduces_corners_and_broadcasts():
