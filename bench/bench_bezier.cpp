@@ -30,7 +30,6 @@ BezierTriangle bumpy(const Vec3& a, const Vec3& b, const Vec3& c, double amplitu
       p.z() += amplitude * (2.0 * rng.nextDouble() - 1.0);
       piece.b[size_t(BezierTriangle::index(j, k))] = p;
     }
-  piece.updateBounds();
   return piece;
 }
 
@@ -99,7 +98,6 @@ void BezierAccelOctahedron(benchmark::State& state) {
               const Vec3 p = (double(4 - j - k) * a + double(j) * b + double(k) * c) / 4.0;
               piece.b[size_t(BezierTriangle::index(j, k))] = p * (1.0 + 0.6 * (1.0 - p.norm()));
             }
-          piece.updateBounds();
           for (const BezierTriangle& sub : subdivideBezierTriangle(piece)) out.push_back(sub);
         }
     return out;

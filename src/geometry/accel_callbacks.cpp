@@ -155,7 +155,7 @@ void bezierBounds(const RTCBoundsFunctionArguments* args) {
   acquireEdge(args->geometryUserPtr);
   const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
   writeBounds(g->tracesSubPatches ? g->subPatches[args->primID].bounds()
-                                  : (*g->pieces)[args->primID].bounds,
+                                  : (*g->pieces)[args->primID].bounds(),
               g->margin, args->bounds_o);
   releaseEdge(&g->margin);
 }

@@ -48,7 +48,7 @@ uint32_t RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
   if (geometry.bezier) {
     record.normals = GeometryRecord::Normals::Surface;
     record.bezier = geometry.bezier;
-    for (const BezierTriangle& piece : *geometry.bezier) bounds_.extend(piece.bounds);
+    for (const BezierTriangle& piece : *geometry.bezier) bounds_.extend(piece.bounds());
     record.owner = model;
     return addRecord(std::move(record), addModelGeometry(accel_, geometry));
   }
@@ -173,7 +173,7 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
     if (si.geometricNormal.squaredNorm() == 0.0) si.geometricNormal = -ray.direction;
     si.shadingNormal = si.geometricNormal;
     si.offset = floatErrorOffset(
-        std::max({maxAbs(si.p), maxAbs(piece.bounds.lo), maxAbs(piece.bounds.hi)}));
+        std::max({maxAbs(si.p), maxAbs(piece.bounds().lo), maxAbs(piece.bounds().hi)}));
     si.liftedP = si.p;
     return si;
   }

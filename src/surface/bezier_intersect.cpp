@@ -582,7 +582,7 @@ size_t intersectBezierTriangleAll(const BezierTriangle& piece, const Vec3& o, co
 
 namespace {
 
-// The piece over `net`, with `like`'s orientation, triangle and piece number, and its bounds.
+// The piece over `net`, with `like`'s orientation, triangle and piece number.
 BezierTriangle pieceOfNet(const Net& net, const BezierTriangle& like) {
   BezierTriangle out;
   for (int i = 0; i < BezierTriangle::kPoints; ++i) {
@@ -592,7 +592,6 @@ BezierTriangle pieceOfNet(const Net& net, const BezierTriangle& like) {
   out.orientation = like.orientation;
   out.triangle = like.triangle;
   out.piece = like.piece;
-  out.updateBounds();
   return out;
 }
 

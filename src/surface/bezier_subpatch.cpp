@@ -81,7 +81,8 @@ inline P3 cross(const P3& a, const P3& b) {
 bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& u, double& v,
              double& t) {
   const P3 nd{-d.x(), -d.y(), -d.z()};
-  const double boxSize = (piece.bounds.hi - piece.bounds.lo).maxCoeff();
+  const Bounds3 box = piece.bounds();
+  const double boxSize = (box.hi - box.lo).maxCoeff();
   const double dd = d.squaredNorm();
   double previous = kInfinity;
   P3 p, pu, pv, puu, puv, pvv;

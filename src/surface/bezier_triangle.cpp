@@ -37,7 +37,8 @@ bool BezierTriangle::isAffine(double relative) const {
   const Vec3& p0 = at(4, 0, 0);
   const Vec3& p1 = at(0, 4, 0);
   const Vec3& p2 = at(0, 0, 4);
-  const double tolerance = relative * (bounds.hi - bounds.lo).norm();
+  const Bounds3 box = bounds();
+  const double tolerance = relative * (box.hi - box.lo).norm();
   if (!(tolerance >= 0.0)) return false;
   for (int k = 0; k <= kDegree; ++k)
     for (int j = 0; j + k <= kDegree; ++j) {
@@ -94,9 +95,10 @@ void BezierTriangle::positionAndNormal(double u, double v, Vec3& p, Vec3& n) con
   n = safeNormalized(orientation * (4.0 * du).cross(4.0 * dv), Vec3::Zero());
 }
 
-void BezierTriangle::updateBounds() {
-  bounds = Bounds3{};
-  for (const Vec3& p : b) bounds.extend(p);
+Bounds3 BezierTriangle::bounds() const {
+  Bounds3 box;
+  for (const Vec3& p : b) box.extend(p);
+  return box;
 }
 
 }  // namespace quadtri

@@ -123,7 +123,6 @@ std::array<BezierTriangle, 3> g1Pieces(const std::array<Vec3, 3>& p, const std::
     s.at(0, 1, 3) = F[k1];
     s.at(0, 0, 4) = Q;
     s.piece = uint8_t(k);
-    s.updateBounds();
   }
   if (gaveUp) *gaveUp = gave;
   return pieces;

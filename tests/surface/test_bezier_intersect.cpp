@@ -49,8 +49,8 @@ TEST(BezierIntersect, SubdivisionReproducesThePiece) {
     EXPECT_EQ(sub[m].triangle, 7u);
     EXPECT_EQ(sub[m].piece, 2);
     for (const Vec3& p : sub[m].b) {
-      EXPECT_TRUE((p.array() >= sub[m].bounds.lo.array()).all());
-      EXPECT_TRUE((p.array() <= sub[m].bounds.hi.array()).all());
+      EXPECT_TRUE((p.array() >= sub[m].bounds().lo.array()).all());
+      EXPECT_TRUE((p.array() <= sub[m].bounds().hi.array()).all());
     }
     for (int i = 0; i < 50; ++i) {
       const Vec2 l = domainPoint(rng);
@@ -208,7 +208,6 @@ TEST(BezierIntersect, CurvedQuarticReintersection) {
   for (int p = 0; p < 40; ++p) {
     BezierTriangle piece = bumpyPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 0.4, rng);
     for (Vec3& b : piece.b) b.head<2>() += 0.1 * Vec2(rng.nextDouble(), rng.nextDouble());
-    piece.updateBounds();
     for (int i = 0; i < 500; ++i) {
       const Vec2 uv = domainPoint(rng);
       const Vec3 target = piece.position(uv.x(), uv.y());
@@ -306,7 +305,6 @@ TEST(BezierIntersect, SharedEdgesAreWatertight) {
 TEST(BezierIntersect, DegeneratePiecesAreCheap) {
   BezierTriangle point;
   point.b.fill(Vec3(0.5, 0.25, 1.0));
-  point.updateBounds();
   const BezierTriangle segment = flatPiece(Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(0.5, 0.5, 0.5));
   Pcg32 rng(29);
   std::vector<BezierHit> all;

@@ -27,7 +27,6 @@ std::vector<BezierTriangle> curvedPieces() {
     const double amplitude = i < 6 ? 0.1 : 0.5;
     BezierTriangle piece = bumpyPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), amplitude, rng);
     for (Vec3& b : piece.b) b.head<2>() += 0.1 * Vec2(rng.nextDouble(), rng.nextDouble());
-    piece.updateBounds();
     pieces.push_back(piece);
   }
   pieces.push_back(paraboloidPiece(Vec2(-1, -1), Vec2(1.5, -1), Vec2(-1, 1.5)));
@@ -43,7 +42,6 @@ std::vector<BezierTriangle> curvedPieces() {
   for (int k = 0; k <= 4; ++k)
     collapsed.b[size_t(BezierTriangle::index(0, k))] =
         collapsed.b[size_t(BezierTriangle::index(0, 0))];
-  collapsed.updateBounds();
   pieces.push_back(collapsed);
   for (size_t i = 0; i < pieces.size(); ++i) pieces[i].triangle = uint32_t(i);
   return pieces;
@@ -274,7 +272,7 @@ void expectWindingTellsWhetherALineMeetsTheRegion(const std::vector<BezierTriang
       const double tilt = (0.5 * kPi - coneAngle(s.sinCone)) * 0.99 * rng.nextDouble();
       const Vec3 d = tilted(axis, sideways(axis, rng), tilt, r % 2 ? 1.0 : -1.0);
       if (d.dot(vec(s.axis)) * d.dot(vec(s.axis)) <= double(s.sinCone) * s.sinCone) continue;
-      const double size = piece.bounds.diagonal().norm();
+      const double size = piece.bounds().diagonal().norm();
       const Vec3 o = target - 2.0 * size * d;
       // Every root of the piece on the line, and whether one lies in the region (skipping lines
       // within 1e-8 of its boundary, where rounding decides).
@@ -366,7 +364,7 @@ TEST(BezierSubPatch, RaysPastARegionsEdgeMeetOnlyTheRegionHoldingThem) {
           coneAngle(s.sinCone) + (kPi / 3.0 - coneAngle(s.sinCone)) * rng.nextDouble();
       const Vec3 d = tilted(axis, side, tilt, r / 2 ? 1.0 : -1.0);
       if (d.dot(vec(s.axis)) * d.dot(vec(s.axis)) <= 1.01 * double(s.sinCone) * s.sinCone) continue;
-      const double size = piece.bounds.diagonal().norm();
+      const double size = piece.bounds().diagonal().norm();
       const Vec3 o = target - size * d;
       BezierHit h;
       const bool hit = intersectBezierSubPatch(piece, s, o, d, 0.0, kInfinity, h);
@@ -397,8 +395,8 @@ TEST(BezierSubPatch, HitsAreTheWholePieceHits) {
   int hits = 0, compared = 0, againstAll = 0;
   for (size_t p = 0; p < pieces.size(); ++p) {
     const BezierTriangle& piece = pieces[p];
-    const Vec3 centre = 0.5 * (piece.bounds.lo + piece.bounds.hi);
-    const double size = piece.bounds.diagonal().norm();
+    const Vec3 centre = 0.5 * (piece.bounds().lo + piece.bounds().hi);
+    const double size = piece.bounds().diagonal().norm();
     for (int i = 0; i < 1500; ++i) {
       double u = rng.nextDouble(), v = rng.nextDouble();
       if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
