@@ -9,7 +9,8 @@
 # Usage: scripts/measure-first-pixel.sh [MODELS] [SEGMENTS RINGS]
 #   MODELS    comma-separated (default: every model of `quadtri convert --help`)
 #   SEGMENTS RINGS   the torus' divisions (default 1000 500: 2·S·R = 1,000,000 triangles)
-# Environment: QUADTRI (default build/src/cli/quadtri), THREADS (default: all cores).
+# Environment: QUADTRI (default build/src/cli/quadtri), THREADS (default: all cores), REPEAT
+# (default 3: each model takes turns with shading that many times, each keeping its fastest).
 # Prints a Markdown table; the ratios are each model's figure over shading's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -47,23 +48,38 @@ XML
 triangles=$((2 * segments * rings))
 echo "Time to first pixel and peak memory, $triangles-triangle torus, 32x32 at 1 spp ($(nproc) cores, threads=$threads)"
 echo
-echo "| model | scene build (s) | first pixel (s) | ÷ shading | peak memory (MiB) | ÷ shading |"
-echo "|---|---:|---:|---:|---:|---:|"
-base_first=""
-base_peak=""
-for model in shading ${models//,/ }; do
-  if [ "$model" = shading ] && [ -n "$base_first" ]; then continue; fi
-  out=$("$quadtri" render "$work/scene.xml" --model "$model" --threads "$threads" -o "$work/$model.exr" 2>&1) || {
-    echo "| $model | failed: $(echo "$out" | tail -1) | | | | |"
-    continue
+echo "| model | scene build (s) | first pixel (s) | shading's (s) | ÷ shading | peak memory (MiB) | shading's (MiB) | ÷ shading |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+repeat=${REPEAT:-3}
+# One render's summary lines: "BUILD FIRST PEAK", or the error's last line.
+run_one() {
+  local out
+  out=$("$quadtri" render "$work/scene.xml" --model "$1" --threads "$threads" -o "$work/$1.exr" 2>&1) || {
+    echo "failed: $(echo "$out" | tail -1)"
+    return
   }
-  build=$(echo "$out" | sed -n 's/^scene build *\([0-9.]*\) s.*/\1/p')
-  first=$(echo "$out" | sed -n 's/^first pixel *\([0-9.]*\) s.*/\1/p')
-  peak=$(echo "$out" | sed -n 's/^peak memory *\([0-9.]*\) MiB.*/\1/p')
-  if [ -z "$base_first" ]; then
-    base_first=$first
-    base_peak=$peak
+  echo "$(echo "$out" | sed -n 's/^scene build *\([0-9.]*\) s.*/\1/p')" \
+    "$(echo "$out" | sed -n 's/^first pixel *\([0-9.]*\) s.*/\1/p')" \
+    "$(echo "$out" | sed -n 's/^peak memory *\([0-9.]*\) MiB.*/\1/p')"
+}
+min() { awk -v a="$1" -v b="$2" 'BEGIN { print (b == "" || a + 0 < b + 0) ? a : b }'; }
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+# Each model takes turns with shading, REPEAT times; each keeps its fastest run (the machine's
+# load only ever adds time) and its ratios are to shading's fastest run among those turns.
+for model in ${models//,/ }; do
+  [ "$model" = shading ] && continue
+  sf="" sp="" mb="" mf="" mp="" failed=""
+  for ((r = 0; r < repeat; ++r)); do
+    read -r b f p <<<"$(run_one shading)"
+    sf=$(min "$f" "$sf") sp=$(min "$p" "$sp")
+    result=$(run_one "$model")
+    if [[ $result == failed:* ]]; then failed=$result; break; fi
+    read -r b f p <<<"$result"
+    mb=$(min "$b" "$mb") mf=$(min "$f" "$mf") mp=$(min "$p" "$mp")
+  done
+  if [ -n "$failed" ]; then
+    echo "| $model | $failed | | | | | | |"
+    continue
   fi
-  ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
-  echo "| $model | $build | $first | $(ratio "$first" "$base_first") | $peak | $(ratio "$peak" "$base_peak") |"
+  echo "| $model | $mb | $mf | $sf | $(ratio "$mf" "$sf") | $mp | $sp | $(ratio "$mp" "$sp") |"
 done
