@@ -27,12 +27,12 @@ Vec3 parametricNormal(const QuadraticPatch& fp, double orientation, double u, do
   return orientation * safeNormalized(du.cross(dv), Vec3::Zero());
 }
 
-// f_p(u,v) projected along f_p's normal onto q = 0, or nullopt where no root is within
-// `reach` (longestEdge(fp), which the caller computes once per patch).
+// f_p(u,v) projected along n, f_p's normal there (parametricNormal, which the caller has),
+// onto q = 0, or nullopt where no root is within `reach` (longestEdge(fp), which the caller
+// computes once per patch).
 std::optional<Vec3> projectOntoQuadric(const QuadricCoeffs& q, const QuadraticPatch& fp,
-                                       double orientation, double u, double v, double reach) {
+                                       const Vec3& n, double u, double v, double reach) {
   const Vec3 p = fp.position(u, v);
-  const Vec3 n = parametricNormal(fp, orientation, u, v);
   const auto s = nearestRayRoot(q, p, n, reach);
   if (!s) return std::nullopt;
   return Vec3(p + *s * n);
@@ -114,10 +114,10 @@ SurfacePoint ImplicitModel::evaluate(size_t t, double u, double v) const {
   const QuadraticPatch fp = parametricPatch(t);
   const QuadricPatch& patch = patches_[t];
   const double orient = patchOrientation(mesh(), t);
+  const Vec3 n = parametricNormal(fp, orient, u, v);
   // Where f_p is singular its normal falls back to the triangle's, oriented the same way.
-  const Vec3 nParam =
-      safeNormalized(parametricNormal(fp, orient, u, v), orient * mesh().faceNormal(t));
-  const auto p = projectOntoQuadric(patch.q, fp, orient, u, v, longestEdge(fp));
+  const Vec3 nParam = safeNormalized(n, orient * mesh().faceNormal(t));
+  const auto p = projectOntoQuadric(patch.q, fp, n, u, v, longestEdge(fp));
   if (!p) return {fp.position(u, v), nParam};
   return {*p, safeNormalized(patch.orientation * quadricGradient(patch.q, *p), nParam)};
 }
