@@ -67,8 +67,7 @@ class RobustImplicitModel final : public SurfaceModel {
   explicit RobustImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "quadric-implicit-robust"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
-  /// evaluate(t, u, v).position, without the normal.
-  Vec3 position(size_t t, double u, double v) const;
+  Vec3 position(size_t t, double u, double v) const override;
   Representation representation() const override { return Representation::Implicit; }
   /// The patches, then one bridge per interior edge whose sides do not meet exactly.
   const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
