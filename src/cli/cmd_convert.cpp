@@ -63,10 +63,12 @@ Action addConvertCommand(CLI::App& app) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (const std::optional<std::string> warning = conversionWarning(*model, input.description))
       fmt::print(stderr, "warning: {}\n", *warning);
-    // A tessellation written as triangles is resolved to the level it uses; patch files only
-    // name the request.
+    // A tessellation written as triangles, or a tessellated model's (which it renders), is
+    // resolved to the level it uses, as Python's Model does; other patch files name the request.
     const Tessellation tessellation =
-        writesPatches ? requested : resolveTessellation(*model, requested);
+        writesPatches && model->representation() != Representation::Tessellated
+            ? requested
+            : resolveTessellation(*model, requested);
     if (!writesPatches)
       chargeResolvedTessellation(budget, opt->model, requested, tessellation, ModelUse::ConvertMesh,
                                  mesh->triangleCount(), opt->mesh);

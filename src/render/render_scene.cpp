@@ -172,8 +172,8 @@ std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
     si.geometricNormal = hit.geometricNormal;
     if (si.geometricNormal.squaredNorm() == 0.0) si.geometricNormal = -ray.direction;
     si.shadingNormal = si.geometricNormal;
-    si.offset = floatErrorOffset(
-        std::max({maxAbs(si.p), maxAbs(piece.bounds().lo), maxAbs(piece.bounds().hi)}));
+    const Bounds3 box = piece.bounds();
+    si.offset = floatErrorOffset(std::max({maxAbs(si.p), maxAbs(box.lo), maxAbs(box.hi)}));
     si.liftedP = si.p;
     return si;
   }

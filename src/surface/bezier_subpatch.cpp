@@ -81,8 +81,6 @@ inline P3 cross(const P3& a, const P3& b) {
 bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& u, double& v,
              double& t) {
   const P3 nd{-d.x(), -d.y(), -d.z()};
-  const Bounds3 box = piece.bounds();
-  const double boxSize = (box.hi - box.lo).maxCoeff();
   const double dd = d.squaredNorm();
   double previous = kInfinity;
   P3 p, pu, pv, puu, puv, pvv;
@@ -116,6 +114,9 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
     if (settled || quadratic) {
       const P3 r{p.x - o.x(), p.y - o.y(), p.z - o.z()};
       const double tp = (r.x * d.x() + r.y * d.y() + r.z * d.z()) / dd;
+      // The box of the control points, only once the step has settled (the piece stores none).
+      const Bounds3 box = piece.bounds();
+      const double boxSize = (box.hi - box.lo).maxCoeff();
       const double residual = (settled ? 1e-9 : 1e-6) *
                               (std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) + boxSize);
       if (std::abs(r.x - tp * d.x()) <= residual && std::abs(r.y - tp * d.y()) <= residual &&

@@ -1,6 +1,7 @@
 #include "quadtri/surface/tessellate.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <unordered_map>
 
@@ -104,9 +105,14 @@ Tessellation Tessellation::parse(const std::string& text) {
   try {
     size_t used = 0;
     if (text.starts_with("auto:")) {
-      const std::string number = text.substr(5);
-      const double tolerance = std::stod(number, &used);
-      if (used == number.size() && std::isfinite(tolerance) && tolerance > 0.0 && tolerance < 1.0)
+      // from_chars: the same digits in any locale (Python may have set one with a decimal
+      // comma), no leading space or sign.
+      double tolerance = 0.0;
+      const char* first = text.data() + 5;
+      const char* last = text.data() + text.size();
+      const auto [end, error] = std::from_chars(first, last, tolerance);
+      if (error == std::errc() && end == last && std::isfinite(tolerance) && tolerance > 0.0 &&
+          tolerance < 1.0)
         return adaptive(tolerance);
     } else {
       const int level = std::stoi(text, &used);
@@ -129,9 +135,12 @@ double levelOneDeviation(const SurfaceModel& model) {
   // The distance e(u, v) between a quadratic patch and the flat triangle through its corners is
   // a quadratic vanishing at the corners, e = uv·A + vw·B + wu·C (w = 1 - u - v): A/4, B/4, C/4
   // at the edges' midpoints, and |e| <= (uv + vw + wu)·max(|A|, |B|, |C|) <= max/3. So 4/3 of
-  // the largest midpoint distance bounds it; the centroid is sampled too, for the patches of
-  // higher degree (PN triangles, the G1 pieces), for which this is an estimate.
+  // the largest midpoint distance bounds it. For the patches of higher degree (PN triangles,
+  // the G1 pieces) this is an estimate, to which the centroid and the edges' quarter points add:
+  // an S-shaped cubic edge is flat at its midpoint and strays most near a quarter of the way.
   constexpr double kMid[3][2] = {{0.5, 0.0}, {0.5, 0.5}, {0.0, 0.5}};
+  constexpr double kQuarter[6][2] = {{0.25, 0.0},  {0.75, 0.0}, {0.75, 0.25},
+                                     {0.25, 0.75}, {0.0, 0.75}, {0.0, 0.25}};
   const auto patchDeviation = [&](size_t t) {
     const Vec3 c0 = model.position(t, 0.0, 0.0);
     const Vec3 c1 = model.position(t, 1.0, 0.0);
@@ -139,9 +148,10 @@ double levelOneDeviation(const SurfaceModel& model) {
     const auto distance = [&](double u, double v) {
       return (model.position(t, u, v) - ((1.0 - u - v) * c0 + u * c1 + v * c2)).norm();
     };
-    double midpoints = 0.0;
+    double midpoints = 0.0, others = distance(1.0 / 3.0, 1.0 / 3.0);
     for (const auto& m : kMid) midpoints = std::max(midpoints, distance(m[0], m[1]));
-    return std::max(4.0 / 3.0 * midpoints, distance(1.0 / 3.0, 1.0 / 3.0));
+    for (const auto& q : kQuarter) others = std::max(others, distance(q[0], q[1]));
+    return std::max(4.0 / 3.0 * midpoints, others);
   };
   return parallelReduce(
       tbb::blocked_range<size_t>(0, model.patchCount(), 1024), 0.0,

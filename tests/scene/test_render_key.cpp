@@ -8,6 +8,7 @@
 #include "quadtri/scene/render_key.h"
 #include "quadtri/scene/scene_builder.h"
 #include "quadtri/scene/scene_loader.h"
+#include "quadtri/scene/shape/mesh_file_xml.h"
 
 namespace quadtri {
 namespace {
@@ -78,6 +79,17 @@ TEST(RenderKey, ChangesWithWhatTheImageDependsOnOnly) {
   RenderOptions tent = options;
   tent.filter.tentRadius = 2.0;
   EXPECT_NE(renderKey(d, tent, std::nullopt), key);
+  // No tessellation named is `auto`, the renderer's default, and not a level.
+  {
+    SceneDescription named = d;
+    ASSERT_EQ(named.shapes.size(), 1u);
+    auto params = std::make_shared<MeshFileShapeParams>(*named.shapes[0].as<MeshFileShapeParams>());
+    params->tessellation = "auto";
+    named.shapes[0].params = params;
+    EXPECT_EQ(renderKey(named, options, std::nullopt), key);
+    params->tessellation = "8";
+    EXPECT_NE(renderKey(named, options, std::nullopt), key);
+  }
   // The mesh file's bytes count, not only its name.
   std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n";
   EXPECT_NE(renderKey(d, options, std::nullopt), key);

@@ -141,6 +141,35 @@ TEST(SurfaceTessellation, AutoPicksTheLowestLevelWithinItsTolerance) {
       }
 }
 
+// An S-shaped PN edge (both corner normals tilted the same way along it) is flat at its midpoint;
+// the estimate still sees how far the patch strays, from the edges' quarter points (without
+// them this test fails).
+TEST(SurfaceTessellation, AutoSeesAnSShapedCubicEdge) {
+  TriangleMesh tri;
+  tri.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  tri.triangles = {{0, 1, 2}};
+  // One normal, tilted along (1, 1, 0): edges 0-1 and 0-2 are S-shaped and edge 1-2 is straight,
+  // so the patch is flat at every edge's midpoint and at its centroid.
+  const Vec3 n = Vec3(0.3, 0.3, 1).normalized();
+  tri.normals = {n, n, n};
+  tri.normalIndices = tri.triangles;
+  const auto model = makeModel("pn", std::make_shared<const TriangleMesh>(tri));
+  const Vec3 c[3] = {model->position(0, 0, 0), model->position(0, 1, 0), model->position(0, 0, 1)};
+  double worst = 0.0, midpoint = 0.0;
+  for (int i = 0; i <= 64; ++i)
+    for (int j = 0; i + j <= 64; ++j) {
+      const double u = i / 64.0, v = j / 64.0;
+      const double d =
+          (model->position(0, u, v) - ((1 - u - v) * c[0] + u * c[1] + v * c[2])).norm();
+      worst = std::max(worst, d);
+      if (i == 32 && j == 0) midpoint = d;
+    }
+  EXPECT_LT(midpoint, 1e-3 * worst);  // the edge is S-shaped: flat at its midpoint
+  EXPECT_LT((model->position(0, 1 / 3.0, 1 / 3.0) - (c[0] + c[1] + c[2]) / 3.0).norm(),
+            1e-3 * worst);
+  EXPECT_GE(levelOneDeviation(*model), 0.75 * worst);  // 80% here: an estimate, not a bound
+}
+
 // For a quadratic patch (quadric-param) the estimate is a bound: every lattice triangle of the
 // picked level lies within the tolerance of the surface, here checked at its edges' midpoints
 // and its centroid, where a quadratic's distance from its flat interpolant peaks.

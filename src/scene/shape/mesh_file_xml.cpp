@@ -90,7 +90,10 @@ void MeshFileShapeParams::addToKey(KeyWriter& key, std::string_view type) const 
   fields.type = type == "ply" ? legacy_key::Shape::Ply : legacy_key::Shape::Obj;
   fields.file = filename;
   fields.model = model;
-  fields.tessellation = tessellation;
+  // No tessellation named meant level 8 before `auto` became the default: the key names `auto`,
+  // so a render state or tile of the old default is not resumed or merged with the new one
+  // (and naming `auto` gives the same key as naming nothing).
+  fields.tessellation = tessellation.empty() ? "auto" : tessellation;
   fields.normals = normals;
   fields.faceNormals = faceNormals;
   fields.write(key);

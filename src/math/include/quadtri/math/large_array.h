@@ -45,9 +45,10 @@ inline void adviseHugePages(const void* data, size_t bytes) noexcept {
 #endif
 }
 
-/// Maps the pages of [data, data + bytes) on every thread: each 2 MiB part's first byte is
-/// written (zero), so the kernel's fault and page clearing run in parallel instead of inside
-/// the one thread that constructs the elements next. For storage that holds no object yet.
+/// Maps the pages of [data, data + bytes) on every thread: the threads share the 2 MiB parts
+/// and write a zero to the first byte of each 4 KiB page of theirs, so the kernel's faults and
+/// page clearing run in parallel instead of inside the one thread that constructs the elements
+/// next. For storage that holds no object yet (reserveLarge's fresh allocation).
 inline void prefaultLarge(void* data, size_t bytes) {
   if (data == nullptr || bytes < kLargeArrayBytes) return;
   auto* base = static_cast<unsigned char*>(data);
