@@ -65,10 +65,8 @@ Action addConvertCommand(CLI::App& app) {
       fmt::print(stderr, "warning: {}\n", *warning);
     // A tessellation written as triangles, or a tessellated model's (which it renders), is
     // resolved to the level it uses, as Python's Model does; other patch files name the request.
-    const Tessellation tessellation =
-        writesPatches && model->representation() != Representation::Tessellated
-            ? requested
-            : resolveTessellation(*model, requested);
+    const Tessellation tessellation = writesPatches ? renderTessellation(*model, requested)
+                                                    : resolveTessellation(*model, requested);
     if (!writesPatches)
       chargeResolvedTessellation(budget, opt->model, requested, tessellation, ModelUse::ConvertMesh,
                                  mesh->triangleCount(), opt->mesh);

@@ -117,8 +117,7 @@ an unknown model or a mesh it rejects.
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
              // A tessellated model renders its lattice: its automatic level is picked now. The
              // others resolve it when they are tessellated (tessellate()).
-             if (model.model->representation() == Representation::Tessellated)
-               model.tessellation = resolveTessellation(*model.model, model.tessellation);
+             model.tessellation = renderTessellation(*model.model, model.tessellation);
              return model;
            }),
            py::arg("name"), py::arg("V"), py::arg("F"), py::arg("N") = py::none(),

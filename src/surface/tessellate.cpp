@@ -103,7 +103,6 @@ Tessellation Tessellation::parse(const std::string& text) {
   if (text == "thesis") return thesis();
   if (text == "auto") return adaptive();
   try {
-    size_t used = 0;
     if (text.starts_with("auto:")) {
       // from_chars: the same digits in any locale (Python may have set one with a decimal
       // comma), no leading space or sign.
@@ -115,6 +114,7 @@ Tessellation Tessellation::parse(const std::string& text) {
           tolerance < 1.0)
         return adaptive(tolerance);
     } else {
+      size_t used = 0;
       const int level = std::stoi(text, &used);
       if (used == text.size() && level >= 1 && level <= 256) return {Kind::Lattice, level};
     }
@@ -177,6 +177,12 @@ Tessellation resolveTessellation(const SurfaceModel& model, const Tessellation& 
   int level = 1;
   while (level < highest && !(deviation <= allowed * double(level) * double(level))) ++level;
   return {Tessellation::Kind::Lattice, level};
+}
+
+Tessellation renderTessellation(const SurfaceModel& model, const Tessellation& tessellation) {
+  return model.representation() == Representation::Tessellated
+             ? resolveTessellation(model, tessellation)
+             : tessellation;
 }
 
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {

@@ -27,10 +27,7 @@ std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, Tri
   transformMesh(mesh, desc.toWorld, desc.flipNormals);
   std::shared_ptr<const SurfaceModel> converted =
       makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
-  // Only a tessellated model is rendered from its lattice; the others are traced as they are.
-  const Tessellation resolved = converted->representation() == Representation::Tessellated
-                                    ? resolveTessellation(*converted, tessellation)
-                                    : tessellation;
+  const Tessellation resolved = renderTessellation(*converted, tessellation);
   chargeResolvedTessellation(context.budget, model, tessellation, resolved, ModelUse::Render,
                              converted->patchCount(), fmt::format("{} ({})", desc.location, model));
   context.scene.addModel(converted, resolved, context.bsdf, desc.areaRadiance, context.name);

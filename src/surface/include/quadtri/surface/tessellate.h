@@ -47,6 +47,10 @@ double levelOneDeviation(const SurfaceModel& model);
 /// the highest level, dense ones few triangles per patch.
 Tessellation resolveTessellation(const SurfaceModel& model, const Tessellation& tessellation);
 
+/// The tessellation `model` is rendered with: resolveTessellation for a tessellated model, and
+/// `tessellation` as it is for the others, which are traced as they are (no lattice to pick).
+Tessellation renderTessellation(const SurfaceModel& model, const Tessellation& tessellation);
+
 /// Evaluates every patch of `model` on the tessellation's points (an Adaptive one resolved
 /// first) and triangulates them. Vertex
 /// normals are the model's surface normals. When model.sharesEdges(), points on a mesh edge and
