@@ -33,6 +33,26 @@ CornerStats join(CornerStats a, const CornerStats& b) {
   return a;
 }
 
+// An angle in [0°, 180°] as the argument of atan2: sine >= 0.
+struct AngleArg {
+  double sine = 0.0, cosine = 1.0;
+  // Whether this angle exceeds `other`'s: the sign of the 2D cross product of the (cos, sin)
+  // pairs, both in the upper half plane, so no atan2 is needed to compare them. Where it is 0 the
+  // angles are equal, or one lies on the axis: 0° or 180° by its cosine's sign bit, as atan2
+  // reads it.
+  bool wider(const AngleArg& other) const {
+    const double cross = sine * other.cosine - cosine * other.sine;
+    if (cross != 0.0) return cross > 0.0;
+    if (sine == 0.0 && other.sine == 0.0)
+      return std::signbit(cosine) && !std::signbit(other.cosine);
+    if (other.sine == 0.0) return !std::signbit(other.cosine);
+    if (sine == 0.0) return std::signbit(cosine);
+    return false;
+  }
+  // The same value angleDegrees gives for the two vectors.
+  double degrees() const { return std::atan2(sine, cosine) * (180.0 / kPi); }
+};
+
 // "2.31% of consistent corners (690 of 29868)".
 std::string share(size_t part, size_t whole, std::string_view what) {
   return fmt::format("{:.3g}% of {} ({} of {})", 100.0 * double(part) / double(whole), what, part,
@@ -42,6 +62,11 @@ std::string share(size_t part, size_t whole, std::string_view what) {
 }  // namespace
 
 bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, int k) {
+  return consistentCorner(mesh, ends, t, k, patchOrientation(mesh, t));
+}
+
+bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, int k,
+                      double orientation) {
   const int next = (k + 1) % 3, prev = (k + 2) % 3;
   const Vec3 p = mesh.corner(t, k);
   const Vec3 n = mesh.cornerNormal(t, k);
@@ -54,7 +79,7 @@ bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, 
     if (end->crease() && std::abs(end->direction.dot(n)) > 1e-6) return false;
   // Tangents along one line (two edges leaving along the same crease line) span no plane:
   // the sine of their angle must clear round-off.
-  return patchOrientation(mesh, t) * t1.cross(t2).dot(n) > 1e-9 * t1.norm() * t2.norm();
+  return orientation * t1.cross(t2).dot(n) > 1e-9 * t1.norm() * t2.norm();
 }
 
 std::optional<double> CornerStats::consistentFlipRate() const {
@@ -68,11 +93,16 @@ CornerStats cornerStats(const SurfaceModel& model) {
   return parallelReduce(
       tbb::blocked_range<size_t>(0, model.patchCount()), CornerStats(),
       [&](const tbb::blocked_range<size_t>& range, CornerStats s) {
+        // The largest angles as (sine, cosine) pairs, |n × n_k| and n · n_k: one atan2 per range
+        // instead of one per corner (a tenth of the warning's time on a million triangles).
+        AngleArg worst, worstConsistent;
+        bool anyConsistent = false;
         for (size_t t = range.begin(); t != range.end(); ++t) {
+          const double orientation = patchOrientation(mesh, t);
           for (int k = 0; k < 3; ++k) {
             ++s.corners;
             const Vec3 nk = mesh.cornerNormal(t, k);
-            const bool consistent = consistentCorner(mesh, ends, t, k);
+            const bool consistent = consistentCorner(mesh, ends, t, k, orientation);
             s.inconsistent += !consistent;
             const SurfacePoint p = model.evaluate(t, kCornerUv[k].x(), kCornerUv[k].y());
             if (!allFinite(p.position) || !allFinite(p.normal)) {
@@ -82,17 +112,21 @@ CornerStats cornerStats(const SurfaceModel& model) {
               }
               continue;
             }
-            const double error = angleDegrees(p.normal, nk);
-            const bool flip = p.normal.dot(nk) < 0.0;
-            s.maxNormalErrorDeg = std::max(s.maxNormalErrorDeg, error);
+            const AngleArg angle{p.normal.cross(nk).norm(), p.normal.dot(nk)};
+            const bool flip = angle.cosine < 0.0;
+            if (angle.wider(worst)) worst = angle;
             s.flips += flip;
             if (consistent) {
               s.consistentFlips += flip;
-              s.maxConsistentNormalErrorDeg =
-                  std::max(s.maxConsistentNormalErrorDeg.value_or(0.0), error);
+              anyConsistent = true;
+              if (angle.wider(worstConsistent)) worstConsistent = angle;
             }
           }
         }
+        s.maxNormalErrorDeg = std::max(s.maxNormalErrorDeg, worst.degrees());
+        if (anyConsistent)
+          s.maxConsistentNormalErrorDeg =
+              std::max(s.maxConsistentNormalErrorDeg.value_or(0.0), worstConsistent.degrees());
         return s;
       },
       join);

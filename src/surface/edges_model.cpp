@@ -15,8 +15,9 @@ EdgeCurve curve(const QuadraticPatch& p, int i, int j) {
 
 // Transfinite interpolant and its partial derivatives. Treating λ0, λ1, λ2 as independent,
 // ∂P/∂λ_m = g_m + Σ_{i≠m} λ_i e_im'(λ_m) with g_m = e_mj(λ_j) + e_mk(λ_k) − v_m; then
-// p_u = ∂P/∂λ1 − ∂P/∂λ0 and p_v = ∂P/∂λ2 − ∂P/∂λ0 since λ0 = 1-u-v.
-Vec3 transfinite(const QuadraticPatch& p, double u, double v, Vec3& pu, Vec3& pv) {
+// p_u = ∂P/∂λ1 − ∂P/∂λ0 and p_v = ∂P/∂λ2 − ∂P/∂λ0 since λ0 = 1-u-v. With pu and pv null only
+// the position is computed (the same sums, so the same bits).
+Vec3 transfinite(const QuadraticPatch& p, double u, double v, Vec3* pu, Vec3* pv) {
   const std::array<double, 3> l = {1.0 - u - v, u, v};
   std::array<Vec3, 3> dl;
   Vec3 pos = Vec3::Zero();
@@ -24,10 +25,12 @@ Vec3 transfinite(const QuadraticPatch& p, double u, double v, Vec3& pu, Vec3& pv
     const int j = (m + 1) % 3, k = (m + 2) % 3;
     const Vec3 g = curve(p, m, j).at(l[j]) + curve(p, m, k).at(l[k]) - p.v[m];
     pos += l[m] * g;
-    dl[m] = g + l[j] * curve(p, j, m).tangent(l[m]) + l[k] * curve(p, k, m).tangent(l[m]);
+    if (pu) dl[m] = g + l[j] * curve(p, j, m).tangent(l[m]) + l[k] * curve(p, k, m).tangent(l[m]);
   }
-  pu = dl[1] - dl[0];
-  pv = dl[2] - dl[0];
+  if (pu) {
+    *pu = dl[1] - dl[0];
+    *pv = dl[2] - dl[0];
+  }
   return pos;
 }
 
@@ -37,16 +40,19 @@ Vec3 transfinite(const QuadraticPatch& p, double u, double v, Vec3& pu, Vec3& pv
 // With ∂w/∂u' = ∂w/∂v' = −1:
 //   ∂P/∂u' = A − C + u' f_w'(1-w) − v'(f_v'(w) + f_u'(1-u')) + w f_w'(u')
 //   ∂P/∂v' = B − C + u'(f_u'(v') + f_w'(1-w)) − v' f_v'(w) − w f_v'(1-v')
-Vec3 thesisEq42(const QuadraticPatch& p, double up, double vp, Vec3& dup, Vec3& dvp) {
+// With dup and dvp null only the position is computed.
+Vec3 thesisEq42(const QuadraticPatch& p, double up, double vp, Vec3* dup, Vec3* dvp) {
   const auto [fu, fv, fw] = thesisEdgeCurves(p);
   const double w = 1.0 - up - vp;
   const Vec3 A = fu.at(vp) + fw.at(1.0 - w) - p.v[0];
   const Vec3 B = fv.at(w) + fu.at(1.0 - up) - p.v[2];
   const Vec3 C = fw.at(up) + fv.at(1.0 - vp) - p.v[1];
-  dup = A - C + up * fw.tangent(1.0 - w) - vp * (fv.tangent(w) + fu.tangent(1.0 - up)) +
-        w * fw.tangent(up);
-  dvp = B - C + up * (fu.tangent(vp) + fw.tangent(1.0 - w)) - vp * fv.tangent(w) -
-        w * fv.tangent(1.0 - vp);
+  if (dup) {
+    *dup = A - C + up * fw.tangent(1.0 - w) - vp * (fv.tangent(w) + fu.tangent(1.0 - up)) +
+           w * fw.tangent(up);
+    *dvp = B - C + up * (fu.tangent(vp) + fw.tangent(1.0 - w)) - vp * fv.tangent(w) -
+           w * fv.tangent(1.0 - vp);
+  }
   return up * A + vp * B + w * C;
 }
 
@@ -85,12 +91,18 @@ SurfacePoint EdgesModel::evaluate(size_t t, double u, double v) const {
   const QuadraticPatch p = edges(t);
   Vec3 pu, pv, pos;
   if (blend_ == Blend::Transfinite) {
-    pos = transfinite(p, u, v, pu, pv);
+    pos = transfinite(p, u, v, &pu, &pv);
   } else {
     // Printed (u', v') = (v, u): ∂/∂u = ∂/∂v' and ∂/∂v = ∂/∂u'.
-    pos = thesisEq42(p, v, u, pv, pu);
+    pos = thesisEq42(p, v, u, &pv, &pu);
   }
   return {pos, orientedPatchNormal(mesh(), t, u, v, pu, pv)};
+}
+
+Vec3 EdgesModel::position(size_t t, double u, double v) const {
+  const QuadraticPatch p = edges(t);
+  return blend_ == Blend::Transfinite ? transfinite(p, u, v, nullptr, nullptr)
+                                      : thesisEq42(p, v, u, nullptr, nullptr);
 }
 
 nlohmann::json EdgesModel::patchJson(size_t t) const {

@@ -208,6 +208,42 @@ TEST(CornerStats, NoConsistentCornerOnADegenerateTriangle) {
   EXPECT_FALSE(s.maxConsistentNormalErrorDeg);
 }
 
+TEST(CornerStats, LargestErrorsAreTheLargestCornerAngles) {
+  // cornerStats compares angles as (sine, cosine) pairs and takes one atan2 per block of patches:
+  // its maxima must be the largest angleDegrees of any corner, bit for bit. The meshes give
+  // exact zeros (the lifted grid's flat faces), a flipped normal near 180° and a corner whose
+  // flat normal is exactly opposite its corner normal.
+  TriangleMesh flipped = makeBuiltin("icosphere", ShapeParams{2}).mesh;
+  flipped.normals[flipped.normalIndices[0][0]] *= -1.0;
+  TriangleMesh opposite;
+  opposite.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  opposite.triangles = {{0, 1, 2}};
+  opposite.normals = {Vec3::UnitZ(), -Vec3::UnitZ()};
+  opposite.normalIndices = {{0, 0, 1}};
+  const std::vector<std::shared_ptr<const TriangleMesh>> meshes = {
+      liftedGrid(), std::make_shared<const TriangleMesh>(std::move(flipped)),
+      std::make_shared<const TriangleMesh>(std::move(opposite))};
+  for (const auto& mesh : meshes)
+    for (const char* name : {"flat", "shading", "pn", "quadric-param", "nagata"}) {
+      const std::unique_ptr<SurfaceModel> model = makeModel(name, mesh);
+      const EdgeEnds ends = edgeEnds(*mesh);
+      double worst = 0.0;
+      std::optional<double> worstConsistent;
+      for (size_t t = 0; t < model->patchCount(); ++t)
+        for (int k = 0; k < 3; ++k) {
+          const double u = k == 1 ? 1.0 : 0.0, v = k == 2 ? 1.0 : 0.0;
+          const double angle =
+              angleDegrees(model->evaluate(t, u, v).normal, mesh->cornerNormal(t, k));
+          worst = std::max(worst, angle);
+          if (consistentCorner(*mesh, ends, t, k))
+            worstConsistent = std::max(worstConsistent.value_or(0.0), angle);
+        }
+      const CornerStats s = cornerStats(*model);
+      EXPECT_EQ(s.maxNormalErrorDeg, worst) << name;
+      EXPECT_EQ(s.maxConsistentNormalErrorDeg, worstConsistent) << name;
+    }
+}
+
 TEST(ConversionWarning, NamesTheMeshModelAndBothFigures) {
   const auto mesh = liftedGrid();
   const std::unique_ptr<SurfaceModel> param = makeModel("quadric-param", mesh);

@@ -46,6 +46,9 @@ struct CornerStats {
 
 /// Whether corner k of triangle t is consistent (CornerStats); `ends` = edgeEnds(mesh).
 bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, int k);
+/// The same with `orientation` = patchOrientation(mesh, t), computed once for the patch.
+bool consistentCorner(const TriangleMesh& mesh, const EdgeEnds& ends, size_t t, int k,
+                      double orientation);
 
 /// Evaluates every patch at its three corners (in parallel; the result does not depend on the
 /// thread count).

@@ -58,6 +58,7 @@ class EdgesModel final : public SurfaceModel {
     return blend_ == Blend::Transfinite ? "quadric-edges" : "quadric-edges-eq42";
   }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
+  Vec3 position(size_t t, double u, double v) const override;
   bool sharesEdges() const override { return blend_ == Blend::Transfinite; }
   nlohmann::json patchJson(size_t t) const override;
 
