@@ -99,10 +99,18 @@ SurfacePoint EdgesModel::evaluate(size_t t, double u, double v) const {
   return {pos, orientedPatchNormal(mesh(), t, u, v, pu, pv)};
 }
 
-Vec3 EdgesModel::position(size_t t, double u, double v) const {
-  const QuadraticPatch p = edges(t);
+Vec3 EdgesModel::blendPosition(const QuadraticPatch& p, double u, double v) const {
   return blend_ == Blend::Transfinite ? transfinite(p, u, v, nullptr, nullptr)
                                       : thesisEq42(p, v, u, nullptr, nullptr);
+}
+
+Vec3 EdgesModel::position(size_t t, double u, double v) const {
+  return blendPosition(edges(t), u, v);
+}
+
+void EdgesModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
+  const QuadraticPatch p = edges(t);
+  for (size_t i = 0; i < count; ++i) out[i] = blendPosition(p, uv[i].x(), uv[i].y());
 }
 
 nlohmann::json EdgesModel::patchJson(size_t t) const {

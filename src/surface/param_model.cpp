@@ -25,6 +25,11 @@ Vec3 ParamModel::position(size_t t, double u, double v) const {
   return patch(t).position(u, v);
 }
 
+void ParamModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
+  const QuadraticPatch p = patch(t);
+  for (size_t i = 0; i < count; ++i) out[i] = p.position(uv[i].x(), uv[i].y());
+}
+
 nlohmann::json ParamModel::patchJson(size_t t) const {
   return quadraticPatchJson(patch(t));
 }

@@ -24,55 +24,82 @@ std::array<int, 3> edgeIndex(int a, int b) {
 
 PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm,
                              const std::array<std::array<EdgeEnd, 2>, 3>* ends) {
+  std::array<Vec3, 6> edgePoints;
+  int next = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      if (b == a) continue;
+      // The end of edge ab at a: local edge a (a → a+1) starts there, edge b (b → a) ends there.
+      const EdgeEnd* end = nullptr;
+      if (ends) end = b == (a + 1) % 3 ? &(*ends)[a][0] : &(*ends)[b][1];
+      if (end && end->crease()) {
+        // At a crease: (2p_a + p_b)/3 projected onto the crease line through p_a, which both
+        // sides of the edge share (creases.h).
+        edgePoints[next++] = p[a] + end->tangentPart(p[b] - p[a], nrm[a]) / 3.0;
+      } else {
+        // Subtracting w_ab n_a, w_ab = (p_b − p_a)·n_a, projects (2p_a + p_b)/3 onto a's
+        // tangent plane.
+        const Vec3& n = end ? end->normalFor(nrm[a]) : nrm[a];
+        const double w = (p[b] - p[a]).dot(n);
+        edgePoints[next++] = (2.0 * p[a] + p[b] - w * n) / 3.0;
+      }
+    }
+  PnPatch patch = fromEdgePoints(p, edgePoints);
+  patch.setNormalField(p, nrm);
+  return patch;
+}
+
+PnPatch PnPatch::fromEdgePoints(const std::array<Vec3, 3>& p,
+                                const std::array<Vec3, 6>& edgePoints) {
   PnPatch patch;
   auto at = [&](const std::array<int, 3>& e) -> Vec3& { return patch.b[e[0]][e[1]]; };
   Vec3 edgeSum = Vec3::Zero();
+  int next = 0;
   for (int a = 0; a < 3; ++a) {
     std::array<int, 3> c = {0, 0, 0};
     c[a] = 3;
     at(c) = p[a];
     for (int b = 0; b < 3; ++b) {
       if (b == a) continue;
-      // The end of edge ab at a: local edge a (a → a+1) starts there, edge b (b → a) ends there.
-      const EdgeEnd* end = nullptr;
-      if (ends) end = b == (a + 1) % 3 ? &(*ends)[a][0] : &(*ends)[b][1];
-      Vec3 point;
-      if (end && end->crease()) {
-        // At a crease: (2p_a + p_b)/3 projected onto the crease line through p_a, which both
-        // sides of the edge share (creases.h).
-        point = p[a] + end->tangentPart(p[b] - p[a], nrm[a]) / 3.0;
-      } else {
-        // Subtracting w_ab n_a, w_ab = (p_b − p_a)·n_a, projects (2p_a + p_b)/3 onto a's
-        // tangent plane.
-        const Vec3& n = end ? end->normalFor(nrm[a]) : nrm[a];
-        const double w = (p[b] - p[a]).dot(n);
-        point = (2.0 * p[a] + p[b] - w * n) / 3.0;
-      }
-      at(edgeIndex(a, b)) = point;
-      edgeSum += point;
+      at(edgeIndex(a, b)) = edgePoints[next];
+      edgeSum += edgePoints[next++];
     }
   }
   const Vec3 e = edgeSum / 6.0;
   const Vec3 centroid = (p[0] + p[1] + p[2]) / 3.0;
   patch.b[1][1] = e + 0.5 * (e - centroid);
+  return patch;
+}
 
+void PnPatch::setNormalField(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm) {
   for (int a = 0; a < 3; ++a) {
     std::array<int, 3> c = {0, 0, 0};
     c[a] = 2;
-    patch.n[c[0]][c[1]] = nrm[a];
-    const int b = (a + 1) % 3;
-    const Vec3 edge = p[b] - p[a];
+    n[c[0]][c[1]] = nrm[a];
+    const int next = (a + 1) % 3;
+    const Vec3 edge = p[next] - p[a];
     const double len2 = edge.squaredNorm();
-    const Vec3 sum = nrm[a] + nrm[b];
+    const Vec3 sum = nrm[a] + nrm[next];
     // A zero-length edge has no mirror plane: keep the plain sum there.
     const double vab = len2 > 0.0 ? 2.0 * edge.dot(sum) / len2 : 0.0;
     std::array<int, 3> m = {0, 0, 0};
     m[a] = 1;
-    m[b] = 1;
+    m[next] = 1;
     // Opposite normals across the edge make h vanish: that term then drops out of the field.
-    patch.n[m[0]][m[1]] = safeNormalized(sum - vab * edge, Vec3::Zero());
+    n[m[0]][m[1]] = safeNormalized(sum - vab * edge, Vec3::Zero());
   }
-  return patch;
+}
+
+std::array<Vec3, 6> PnPatch::edgePoints() const {
+  std::array<Vec3, 6> out;
+  int next = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int other = 0; other < 3; ++other)
+      if (other != a) {
+        const std::array<int, 3> e = edgeIndex(a, other);
+        out[next++] = b[e[0]][e[1]];
+      }
+  return out;
 }
 
 namespace {
@@ -136,34 +163,51 @@ Vec3 PnPatch::normalField(double u, double v) const {
 PnModel::PnModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  resizeLarge(patches_, m.triangleCount());
-  // Each triangle writes only its own patch: the result does not depend on the thread count.
+  resizeLarge(edgePoints_, m.triangleCount());
+  // Each triangle writes only its own points: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
-    patches_[t] = PnPatch::fromCorners(tri.p, tri.n, &ends[t]);
+    edgePoints_[t] = PnPatch::fromCorners(tri.p, tri.n, &ends[t]).edgePoints();
   });
 }
 
+PnPatch PnModel::geometry(size_t t) const {
+  const TriangleMesh& m = mesh();
+  return PnPatch::fromEdgePoints({m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)}, edgePoints_[t]);
+}
+
+PnPatch PnModel::patch(size_t t) const {
+  const LocalTriangle tri = localTriangle(mesh(), t);
+  PnPatch patch = PnPatch::fromEdgePoints(tri.p, edgePoints_[t]);
+  patch.setNormalField(tri.p, tri.n);
+  return patch;
+}
+
 SurfacePoint PnModel::evaluate(size_t t, double u, double v) const {
-  const PnPatch& patch = patches_[t];
+  const PnPatch patch = geometry(t);
   Vec3 du, dv;
   patch.derivatives(u, v, du, dv);
   return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
 }
 
 Vec3 PnModel::position(size_t t, double u, double v) const {
-  return patches_[t].position(u, v);
+  return geometry(t).position(u, v);
+}
+
+void PnModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
+  const PnPatch patch = geometry(t);
+  for (size_t i = 0; i < count; ++i) out[i] = patch.position(uv[i].x(), uv[i].y());
 }
 
 Vec3 PnModel::pnNormal(size_t t, double u, double v) const {
-  const Vec3 field = patches_[t].normalField(u, v);
+  const Vec3 field = patch(t).normalField(u, v);
   const double len = field.norm();
   if (len > 1e-12 && std::isfinite(len)) return field / len;
   return evaluate(t, u, v).normal;
 }
 
 nlohmann::json PnModel::patchJson(size_t t) const {
-  const PnPatch& patch = patches_[t];
+  const PnPatch patch = this->patch(t);
   nlohmann::json out;
   for (int k = 0; k < 3; ++k) out["vertices"].push_back(vecJson(mesh().corner(t, k)));
   for (int i = 0; i <= 3; ++i)

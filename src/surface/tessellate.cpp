@@ -138,19 +138,35 @@ double levelOneDeviation(const SurfaceModel& model) {
   // the largest midpoint distance bounds it. For the patches of higher degree (PN triangles,
   // the G1 pieces) this is an estimate, to which the centroid and the edges' quarter points add:
   // an S-shaped cubic edge is flat at its midpoint and strays most near a quarter of the way.
-  constexpr double kMid[3][2] = {{0.5, 0.0}, {0.5, 0.5}, {0.0, 0.5}};
-  constexpr double kQuarter[6][2] = {{0.25, 0.0},  {0.75, 0.0}, {0.75, 0.25},
-                                     {0.25, 0.75}, {0.0, 0.75}, {0.0, 0.25}};
+  // The corners, the edges' midpoints, the centroid and the edges' quarter points, evaluated in
+  // one call a patch (SurfaceModel::positions).
+  static const std::array<Vec2, 13> kSamples = {Vec2(0.0, 0.0),
+                                                Vec2(1.0, 0.0),
+                                                Vec2(0.0, 1.0),
+                                                Vec2(0.5, 0.0),
+                                                Vec2(0.5, 0.5),
+                                                Vec2(0.0, 0.5),
+                                                Vec2(1.0 / 3.0, 1.0 / 3.0),
+                                                Vec2(0.25, 0.0),
+                                                Vec2(0.75, 0.0),
+                                                Vec2(0.75, 0.25),
+                                                Vec2(0.25, 0.75),
+                                                Vec2(0.0, 0.75),
+                                                Vec2(0.0, 0.25)};
   const auto patchDeviation = [&](size_t t) {
-    const Vec3 c0 = model.position(t, 0.0, 0.0);
-    const Vec3 c1 = model.position(t, 1.0, 0.0);
-    const Vec3 c2 = model.position(t, 0.0, 1.0);
-    const auto distance = [&](double u, double v) {
-      return (model.position(t, u, v) - ((1.0 - u - v) * c0 + u * c1 + v * c2)).norm();
+    std::array<Vec3, kSamples.size()> p;
+    model.positions(t, kSamples.data(), kSamples.size(), p.data());
+    // A patch whose points are not finite counts as the worst there is (std::max would drop a
+    // NaN distance).
+    for (const Vec3& point : p)
+      if (!allFinite(point)) return kInfinity;
+    const auto distance = [&](size_t i) {
+      const double u = kSamples[i].x(), v = kSamples[i].y();
+      return (p[i] - ((1.0 - u - v) * p[0] + u * p[1] + v * p[2])).norm();
     };
-    double midpoints = 0.0, others = distance(1.0 / 3.0, 1.0 / 3.0);
-    for (const auto& m : kMid) midpoints = std::max(midpoints, distance(m[0], m[1]));
-    for (const auto& q : kQuarter) others = std::max(others, distance(q[0], q[1]));
+    double midpoints = 0.0, others = 0.0;
+    for (size_t i = 3; i < 6; ++i) midpoints = std::max(midpoints, distance(i));
+    for (size_t i = 6; i < kSamples.size(); ++i) others = std::max(others, distance(i));
     return std::max(4.0 / 3.0 * midpoints, others);
   };
   return parallelReduce(
@@ -158,7 +174,6 @@ double levelOneDeviation(const SurfaceModel& model) {
       [&](const tbb::blocked_range<size_t>& range, double worst) {
         for (size_t t = range.begin(); t != range.end(); ++t) {
           const double d = patchDeviation(t);
-          // A patch whose points are not finite counts as the worst there is.
           worst = std::isfinite(d) ? std::max(worst, d) : kInfinity;
         }
         return worst;

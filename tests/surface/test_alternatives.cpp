@@ -8,6 +8,7 @@
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/bezier_intersect.h"
 #include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/local_patches.h"
 #include "quadtri/surface/model_memory.h"
 #include "quadtri/surface/nagata_model.h"
 #include "quadtri/surface/phong_model.h"
@@ -380,6 +381,28 @@ TEST(Alternatives, PnNormalField) {
   EXPECT_LT((n110 - mirrored).norm(), 1e-14);
   EXPECT_EQ(j["b"].size(), 10u);
   EXPECT_EQ(j["n"].size(), 6u);
+}
+
+TEST(Alternatives, PnKeepsItsEdgePointsAndRebuildsTheSamePatch) {
+  // PnModel keeps six points a patch and rebuilds the rest from the mesh: every coefficient of
+  // the rebuilt patch is the one fromCorners gives, bit for bit, split normals included.
+  for (const char* shape : {"icosphere", "cube", "cylinder"}) {
+    ShapeParams params;
+    params.divisions = 2;
+    const auto mesh = std::make_shared<const TriangleMesh>(makeBuiltin(shape, params).mesh);
+    const PnModel pn(mesh);
+    const EdgeEnds ends = edgeEnds(*mesh);
+    for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+      const LocalTriangle tri = localTriangle(*mesh, t);
+      const PnPatch built = PnPatch::fromCorners(tri.p, tri.n, &ends[t]);
+      const PnPatch kept = pn.patch(t);
+      for (int i = 0; i <= 3; ++i)
+        for (int j = 0; i + j <= 3; ++j) EXPECT_EQ(kept.b[i][j], built.b[i][j]) << shape << t;
+      for (int i = 0; i <= 2; ++i)
+        for (int j = 0; i + j <= 2; ++j) EXPECT_EQ(kept.n[i][j], built.n[i][j]) << shape << t;
+      EXPECT_EQ(pn.position(t, 0.2, 0.3), built.position(0.2, 0.3)) << shape << t;
+    }
+  }
 }
 
 TEST(Alternatives, IcosahedronRadialDeviation) {

@@ -99,6 +99,41 @@ TEST(SurfaceTessellation, AutoParsesItsToleranceAndRefusesAnythingElse) {
 // The picked level is the lowest whose estimate, levelOneDeviation / n², is within the
 // tolerance (or the highest level allowed): coarse meshes keep the highest, dense ones get few
 // triangles per patch, and the choice does not depend on the mesh's scale.
+// The flat triangle, except at one sample point, where the position is `bad`.
+class OnePointModel final : public SurfaceModel {
+ public:
+  OnePointModel(std::shared_ptr<const TriangleMesh> mesh, Vec2 where, double bad)
+      : SurfaceModel(std::move(mesh)), where_(where), bad_(bad) {}
+  std::string_view name() const override { return "one-point"; }
+  SurfacePoint evaluate(size_t t, double u, double v) const override {
+    if (u == where_.x() && v == where_.y()) return {Vec3::Constant(bad_), Vec3::UnitZ()};
+    const Vec3 p =
+        (1.0 - u - v) * mesh().corner(t, 0) + u * mesh().corner(t, 1) + v * mesh().corner(t, 2);
+    return {p, Vec3::UnitZ()};
+  }
+  nlohmann::json patchJson(size_t) const override { return {}; }
+
+ private:
+  Vec2 where_;
+  double bad_;
+};
+
+TEST(SurfaceTessellation, AutoTakesTheHighestLevelWhereAPatchIsNotFinite) {
+  // A NaN or infinite position anywhere the deviation samples (a corner, a midpoint, the
+  // centroid, a quarter point) makes the estimate infinite, so the level is the highest allowed.
+  const auto mesh = icosphere(3);
+  for (const Vec2& where :
+       {Vec2(0, 0), Vec2(0.5, 0.5), Vec2(1.0 / 3.0, 1.0 / 3.0), Vec2(0.75, 0.25)})
+    for (const double bad : {std::nan(""), kInfinity}) {
+      const OnePointModel model(mesh, where, bad);
+      EXPECT_EQ(levelOneDeviation(model), kInfinity) << where.transpose() << " " << bad;
+      EXPECT_EQ(resolveTessellation(model, Tessellation::adaptive()).level,
+                Tessellation::kMaxAdaptiveLevel);
+    }
+  // And a finite flat model deviates by nothing.
+  EXPECT_EQ(levelOneDeviation(OnePointModel(mesh, Vec2(-1, -1), 0.0)), 0.0);
+}
+
 TEST(SurfaceTessellation, AutoPicksTheLowestLevelWithinItsTolerance) {
   for (const char* name : {"quadric-param", "pn", "phong", "nagata", "quadric-edges"})
     for (int level = 0; level <= 5; ++level)

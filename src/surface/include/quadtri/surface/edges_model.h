@@ -59,6 +59,7 @@ class EdgesModel final : public SurfaceModel {
   }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Vec3 position(size_t t, double u, double v) const override;
+  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   bool sharesEdges() const override { return blend_ == Blend::Transfinite; }
   nlohmann::json patchJson(size_t t) const override;
 
@@ -66,6 +67,8 @@ class EdgesModel final : public SurfaceModel {
   QuadraticPatch edges(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }
 
  private:
+  /// position() of the patch p: the blend's sums without their derivatives.
+  Vec3 blendPosition(const QuadraticPatch& p, double u, double v) const;
   Blend blend_;
   std::vector<std::array<Vec3, 3>> controlPoints_;
 };

@@ -50,6 +50,11 @@ class SurfaceModel {
   virtual SurfacePoint evaluate(size_t t, double u, double v) const = 0;
   /// evaluate(t, u, v).position; the parametric models skip the normal.
   virtual Vec3 position(size_t t, double u, double v) const { return evaluate(t, u, v).position; }
+  /// out[i] = position(t, uv[i].x(), uv[i].y()) for i < count, bit for bit; the models that
+  /// rebuild a patch from the mesh per call build it once here.
+  virtual void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
+    for (size_t i = 0; i < count; ++i) out[i] = position(t, uv[i].x(), uv[i].y());
+  }
 
   virtual Representation representation() const { return Representation::Tessellated; }
   /// True when neighbouring patches share their boundary curves, so a tessellation may weld

@@ -24,6 +24,7 @@ class ParamModel final : public SurfaceModel {
   std::string_view name() const override { return "quadric-param"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Vec3 position(size_t t, double u, double v) const override;
+  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   nlohmann::json patchJson(size_t t) const override;
 
   /// The quadratic Bézier triangle of triangle t.

@@ -42,6 +42,15 @@ struct PnPatch {
   /// the tangent plane; nearly equal split normals are replaced by their mean.
   static PnPatch fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm,
                              const std::array<std::array<EdgeEnd, 2>, 3>* ends = nullptr);
+  /// The geometry from corners p and the six edge points (edgePoints' order), the centre
+  /// computed as fromCorners computes it, bit for bit; the normal field is left unset.
+  static PnPatch fromEdgePoints(const std::array<Vec3, 3>& p,
+                                const std::array<Vec3, 6>& edgePoints);
+  /// Sets the normal field n from corners p and unit normals nrm, as fromCorners does.
+  void setNormalField(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm);
+  /// b_ab for (a, b) = (0, 1), (0, 2), (1, 0), (1, 2), (2, 0), (2, 1): the points that depend
+  /// on more than the corners (b_ab next to corner a towards b).
+  std::array<Vec3, 6> edgePoints() const;
 
   Vec3 position(double u, double v) const;
   /// ∂b/∂u and ∂b/∂v: 3 Σ_{i+j+k=2} B²_ijk(λ) (b_{i,j+1,k} − b_{i+1,j,k}) and likewise for v.
@@ -63,15 +72,21 @@ class PnModel final : public SurfaceModel {
   std::string_view name() const override { return "pn"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Vec3 position(size_t t, double u, double v) const override;
+  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   nlohmann::json patchJson(size_t t) const override;
 
   /// The paper's quadratic normal field of patch t at (u, v), normalised (falls back to the
   /// geometric normal where the field vanishes).
   Vec3 pnNormal(size_t t, double u, double v) const;
-  const PnPatch& patch(size_t t) const { return patches_[t]; }
+  /// Patch t, normal field included, rebuilt from the corners and the stored edge points.
+  PnPatch patch(size_t t) const;
 
  private:
-  std::vector<PnPatch> patches_;
+  /// Patch t's geometry without its normal field (what evaluate and position read).
+  PnPatch geometry(size_t t) const;
+  /// Only the six edge points of each patch are kept (144 bytes, where the whole patch took
+  /// 384): the corners are the mesh's and the centre and normal field follow from them.
+  std::vector<std::array<Vec3, 6>> edgePoints_;
 };
 
 }  // namespace quadtri
