@@ -48,20 +48,19 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceMode
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
   resizeLarge(curvatures_, m.triangleCount());
-  resizeLarge(patches_, m.triangleCount());
+  resizeLarge(controlPoints_, m.triangleCount());
   std::vector<uint8_t> gaveUp(m.triangleCount(), 0);
   // Each triangle writes only its own slots: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
-    QuadraticPatch& patch = patches_[t];
+    std::array<Vec3, 3>& b = controlPoints_[t];
     for (int k = 0; k < 3; ++k) {
       const int l = (k + 1) % 3;
       const auto& [ek, el] = ends[t][k];
-      patch.v[k] = tri.p[k];
       if (ek.crease() || el.crease()) {
         // At a crease the tangent follows the crease line both sides share (creases.h).
-        patch.b[k] = creaseControlPoint(tri.p[k], ek, tri.n[k], tri.p[l], el, tri.n[l]);
-        curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * patch.b[k];
+        b[k] = creaseControlPoint(tri.p[k], ek, tri.n[k], tri.p[l], el, tri.n[l]);
+        curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * b[k];
         continue;
       }
       bool straight = false;
@@ -70,25 +69,30 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceMode
       gaveUp[t] |= straight;
       curvatures_[t][k] = c;
       // x(t) = x0 + (Δx − c) t + c t² in Bernstein form: control point x0 + (Δx − c)/2.
-      patch.b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
+      b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
     }
   });
   setFallbacks(std::move(gaveUp));
 }
 
 SurfacePoint NagataModel::evaluate(size_t t, double u, double v) const {
-  const QuadraticPatch& patch = patches_[t];
+  const QuadraticPatch patch = this->patch(t);
   Vec3 du, dv;
   patch.derivatives(u, v, du, dv);
   return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
 }
 
 Vec3 NagataModel::position(size_t t, double u, double v) const {
-  return patches_[t].position(u, v);
+  return patch(t).position(u, v);
+}
+
+void NagataModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
+  const QuadraticPatch p = patch(t);
+  for (size_t i = 0; i < count; ++i) out[i] = p.position(uv[i].x(), uv[i].y());
 }
 
 nlohmann::json NagataModel::patchJson(size_t t) const {
-  const QuadraticPatch& patch = patches_[t];
+  const QuadraticPatch patch = this->patch(t);
   nlohmann::json out;
   for (int k = 0; k < 3; ++k) {
     out["vertices"].push_back(vecJson(patch.v[k]));

@@ -15,11 +15,10 @@ PhongModel::PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha)
   if (!std::isfinite(alpha)) fail("phong: shape factor α = {} is not finite", alpha);
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  resizeLarge(patches_, m.triangleCount());
-  // Each triangle writes only its own patch: the result does not depend on the thread count.
+  resizeLarge(controlPoints_, m.triangleCount());
+  // Each triangle writes only its own points: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
-    QuadraticPatch& patch = patches_[t];
     for (int i = 0; i < 3; ++i) {
       const int j = (i + 1) % 3;
       const Vec3 e = tri.p[j] - tri.p[i];
@@ -27,21 +26,25 @@ PhongModel::PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha)
       // tangent plane, e − (e·d)d on a crease line (the data both sides share there).
       const Vec3 removedI = e - ends[t][i][0].tangentPart(e, tri.n[i]);
       const Vec3 removedJ = e - ends[t][i][1].tangentPart(e, tri.n[j]);
-      patch.v[i] = tri.p[i];
-      patch.b[i] = 0.5 * (tri.p[i] + tri.p[j]) - (0.5 * alpha_) * (removedI - removedJ);
+      controlPoints_[t][i] = 0.5 * (tri.p[i] + tri.p[j]) - (0.5 * alpha_) * (removedI - removedJ);
     }
   });
 }
 
 SurfacePoint PhongModel::evaluate(size_t t, double u, double v) const {
-  const QuadraticPatch& patch = patches_[t];
+  const QuadraticPatch patch = this->patch(t);
   Vec3 du, dv;
   patch.derivatives(u, v, du, dv);
   return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
 }
 
 Vec3 PhongModel::position(size_t t, double u, double v) const {
-  return patches_[t].position(u, v);
+  return patch(t).position(u, v);
+}
+
+void PhongModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
+  const QuadraticPatch p = patch(t);
+  for (size_t i = 0; i < count; ++i) out[i] = p.position(uv[i].x(), uv[i].y());
 }
 
 nlohmann::json PhongModel::patchJson(size_t t) const {
@@ -51,7 +54,7 @@ nlohmann::json PhongModel::patchJson(size_t t) const {
   for (int k = 0; k < 3; ++k) {
     j["vertices"].push_back(vecJson(tri.p[k]));
     j["normals"].push_back(vecJson(tri.n[k]));
-    j["control_points"].push_back(vecJson(patches_[t].b[k]));
+    j["control_points"].push_back(vecJson(controlPoints_[t][k]));
   }
   return j;
 }

@@ -334,7 +334,7 @@ TEST(Alternatives, NagataControlPointVersusThesisEdgePlane) {
         const Vec3 &ni = mesh->cornerNormal(t, k), &nj = mesh->cornerNormal(t, l);
         const double len = (vj - vi).norm();
         const Vec3 mid = 0.5 * (vi + vj);
-        const Vec3& bn = nagata.patch(t).b[k];
+        const Vec3 bn = nagata.patch(t).b[k];
         const Vec3& bt = thesis[t][k];
         for (const Vec3& b : {bn, bt}) {
           EXPECT_NEAR(ni.dot(b - vi), 0.0, 1e-12 * len) << spec;

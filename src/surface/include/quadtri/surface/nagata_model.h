@@ -47,15 +47,18 @@ class NagataModel final : public SurfaceModel {
   std::string_view name() const override { return "nagata"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Vec3 position(size_t t, double u, double v) const override;
+  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   nlohmann::json patchJson(size_t t) const override;
 
   /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).
   const Vec3& curvature(size_t t, int k) const { return curvatures_[t][k]; }
-  const QuadraticPatch& patch(size_t t) const { return patches_[t]; }
+  /// The quadratic Bézier form of patch t: its corners are the mesh's, its edge control points
+  /// the ones kept.
+  QuadraticPatch patch(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }
 
  private:
   std::vector<std::array<Vec3, 3>> curvatures_;
-  std::vector<QuadraticPatch> patches_;
+  std::vector<std::array<Vec3, 3>> controlPoints_;
 };
 
 }  // namespace quadtri

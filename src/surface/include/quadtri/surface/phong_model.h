@@ -1,6 +1,7 @@
 // `phong`: Phong tessellation (Boubekeur and Alexa, "Phong Tessellation", SIGGRAPH Asia 2008).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "quadtri/surface/edge_curves.h"
@@ -34,14 +35,16 @@ class PhongModel final : public SurfaceModel {
   std::string_view name() const override { return "phong"; }
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Vec3 position(size_t t, double u, double v) const override;
+  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   nlohmann::json patchJson(size_t t) const override;
   double alpha() const { return alpha_; }
   /// The quadratic Bézier form of patch t (edge k joins corners k and k+1).
-  const QuadraticPatch& patch(size_t t) const { return patches_[t]; }
+  QuadraticPatch patch(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }
 
  private:
   double alpha_;
-  std::vector<QuadraticPatch> patches_;
+  /// Each patch's three edge control points; its corners are the mesh's.
+  std::vector<std::array<Vec3, 3>> controlPoints_;
 };
 
 }  // namespace quadtri
