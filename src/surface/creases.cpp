@@ -47,6 +47,28 @@ EdgeEnd classifyEnd(const std::vector<Vec3>& normals, const Vec3& chord) {
   return end;
 }
 
+// True when every corner at a position takes one normal index there, and every normal that
+// index names has a direction: then each side of every edge end carries the same unit normal,
+// and every end is Shared. One pass over the corners, where classifying the ends normalises two
+// normals per side of every edge (an eighth of a `pn` conversion on a smooth million-triangle
+// mesh).
+bool everyEndShared(const TriangleMesh& mesh) {
+  std::vector<uint32_t> normalAt(mesh.positions.size(), UINT32_MAX);
+  for (size_t t = 0; t < mesh.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      uint32_t& at = normalAt[mesh.triangles[t][k]];
+      const uint32_t n = mesh.normalIndices[t][k];
+      if (at == UINT32_MAX)
+        at = n;
+      else if (at != n)
+        return false;
+    }
+  for (const uint32_t n : normalAt)
+    if (n != UINT32_MAX && safeNormalized(mesh.normals[n], Vec3::Zero()) == Vec3::Zero())
+      return false;  // unitCornerNormal falls back to each side's own face normal there
+  return true;
+}
+
 }  // namespace
 
 Vec3 EdgeEnd::tangentPart(const Vec3& e, const Vec3& own) const {
@@ -56,13 +78,17 @@ Vec3 EdgeEnd::tangentPart(const Vec3& e, const Vec3& own) const {
 }
 
 EdgeEnds edgeEnds(const TriangleMesh& mesh) {
-  if (!mesh.hasNormals()) return EdgeEnds(mesh.triangleCount());
-  return edgeEnds(mesh, mesh.topology());
+  if (!mesh.hasNormals() || everyEndShared(mesh)) return EdgeEnds(mesh.triangleCount());
+  return EdgeEnds::classify(mesh, mesh.topology());
 }
 
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {
+  if (!mesh.hasNormals() || everyEndShared(mesh)) return EdgeEnds(mesh.triangleCount());
+  return EdgeEnds::classify(mesh, topo);
+}
+
+EdgeEnds EdgeEnds::classify(const TriangleMesh& mesh, const MeshTopology& topo) {
   EdgeEnds out(mesh.triangleCount());
-  if (!mesh.hasNormals()) return out;
   // The ends of edge e from the corner normals of its sides (na, nb: reused buffers for them).
   const auto classify = [&](size_t e, std::vector<Vec3>& na, std::vector<Vec3>& nb) {
     const Edge& edge = topo.edges[e];

@@ -212,6 +212,34 @@ TEST(Creases, CreaseControlPointIsSymmetricBoundedAndExactWhereLinesMeet) {
   EXPECT_EQ(creaseControlPoint(va, ea, Vec3::Zero(), vb, eb, Vec3::Zero()), Vec3(1, 0, 0));
 }
 
+TEST(Creases, EndsAreSharedWithoutClassifyingWhereEveryVertexHasOneNormal) {
+  // A mesh whose corners take one normal index per vertex has no end but Shared, and edgeEnds
+  // says so without building the edge adjacency; a zero normal there, which each side replaces
+  // by its own face normal, or a corner with a normal of its own, still gets its ends classified.
+  TriangleMesh smooth = parseBuiltinSpec("icosphere:2")->mesh;
+  ASSERT_EQ(smooth.normalIndices, smooth.triangles);
+  {
+    const TriangleMesh fresh = smooth;
+    EXPECT_FALSE(edgeEnds(fresh).anySplit());
+    EXPECT_EQ(fresh.topologyCache.builds(), 0u);
+  }
+  TriangleMesh zero = smooth;
+  zero.normals[zero.triangles[0][0]] = Vec3::Zero();
+  const EdgeEnds zeroEnds = edgeEnds(zero);
+  ASSERT_TRUE(zeroEnds.anySplit());
+  EXPECT_EQ(zeroEnds[0][0][0].kind, EdgeEnd::Kind::Crease);
+  TriangleMesh own = smooth;  // corner (0, 0) gets a tilted normal of its own
+  own.normals.push_back((own.normals[own.normalIndices[0][0]] + Vec3(0.3, 0, 0)).normalized());
+  own.normalIndices[0][0] = uint32_t(own.normals.size() - 1);
+  EXPECT_TRUE(edgeEnds(own).anySplit());
+  // The same normal under two indices is still one normal: classified, and Shared.
+  TriangleMesh copied = smooth;
+  copied.normals.push_back(copied.normals[copied.normalIndices[0][0]]);
+  copied.normalIndices[0][0] = uint32_t(copied.normals.size() - 1);
+  EXPECT_FALSE(edgeEnds(copied).anySplit());
+  EXPECT_EQ(copied.topologyCache.builds(), 1u);
+}
+
 TEST(Creases, RandomSplitNormalsShareEveryEdge) {
   // Every corner of an icosphere gets its own random normal (within 50° of the sphere's), so
   // every edge end is split, most of them creases with directions far off the edge: each model

@@ -56,7 +56,11 @@ class EdgeEnds {
   bool anySplit() const { return !stored_.empty(); }
 
  private:
+  friend EdgeEnds edgeEnds(const TriangleMesh&);
   friend EdgeEnds edgeEnds(const TriangleMesh&, const MeshTopology&);
+  /// Classifies every edge's ends (edgeEnds without its check for a mesh whose ends are all
+  /// Shared).
+  static EdgeEnds classify(const TriangleMesh& mesh, const MeshTopology& topo);
   static constexpr uint32_t kShared = ~uint32_t(0);
   static const Triangle& shared() {
     static const Triangle ends{};
