@@ -2,6 +2,7 @@
 // errors that name the XML line.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -81,6 +82,44 @@ TEST(SceneBuilder, TessellatedModelsPickTheirLevelUnlessTheShapeNamesOne) {
   EXPECT_EQ(primitives("dense.ply", "auto"), 81920u);
   EXPECT_EQ(primitives("dense.ply", "2"), 4u * 81920u);
   EXPECT_EQ(primitives("coarse.ply", "auto:0.5"), 20u);
+  std::filesystem::remove_all(dir);
+}
+
+// A mirroring to_world reverses the winding after the loader built the mesh's edge adjacency:
+// the models must not use the adjacency of the triangles as they were. Every ray towards the
+// centre of a mirrored icosphere meets its curved surface once, near the unit sphere, as it
+// does without the mirror.
+TEST(SceneBuilder, MirroredMeshesAreConvertedWithTheirOwnEdges) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "quadtri_scene_builder_mirror";
+  std::filesystem::create_directories(dir);
+  saveMesh(parseBuiltinSpec("icosphere:2")->mesh, dir / "ball.ply");
+  for (const char* model : {"quadric-param", "pn", "phong", "quadric-implicit", "quadric-g1"})
+    for (const char* scale : {"1, 1, 1", "-1, 1, 1"}) {
+      SCOPED_TRACE(std::string(model) + " scale " + scale);
+      const BuiltScene b = build(std::string(kSensor) +
+                                     R"(<shape type="ply"><string name="filename" value="ball.ply"/>
+            <string name="model" value=")" +
+                                     model +
+                                     R"("/><string name="tessellation" value="3"/>
+            <transform name="to_world"><scale value=")" +
+                                     scale + R"("/></transform></shape>)",
+                                 dir / "s.xml");
+      double worst = 0.0;
+      for (int i = 0; i < 400; ++i) {
+        // Directions spread over the sphere (a Fibonacci lattice).
+        const double z = 1.0 - (i + 0.5) / 200.0, phi = i * 2.399963229728653;
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        const Vec3 towards(r * std::cos(phi), r * std::sin(phi), z);
+        Ray ray;
+        ray.origin = 3.0 * towards;
+        ray.direction = -towards;
+        const auto si = b.scene->intersect(ray);
+        ASSERT_TRUE(si) << "ray " << i;
+        worst = std::max(worst, std::abs(si->p.norm() - 1.0));
+      }
+      EXPECT_LT(worst, 0.01);
+    }
   std::filesystem::remove_all(dir);
 }
 

@@ -17,6 +17,9 @@ void transformMesh(TriangleMesh& mesh, const Mat4& toWorld, bool flipNormals) {
   if ((linear.determinant() < 0.0) != flipNormals) {
     for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
     for (Tri& t : mesh.normalIndices) std::swap(t[1], t[2]);
+    // The loader's edge adjacency names each side by its corners' order, which just changed
+    // in place (the cache cannot see that: the array is the same).
+    mesh.topologyCache.forget();
   }
 }
 
