@@ -94,7 +94,7 @@ CornerStats cornerStats(const SurfaceModel& model) {
       tbb::blocked_range<size_t>(0, model.patchCount()), CornerStats(),
       [&](const tbb::blocked_range<size_t>& range, CornerStats s) {
         // The largest angles as (sine, cosine) pairs, |n × n_k| and n · n_k: one atan2 per range
-        // instead of one per corner (a tenth of the warning's time on a million triangles).
+        // instead of one per corner (an eighth of the warning's samples on a million triangles).
         AngleArg worst, worstConsistent;
         bool anyConsistent = false;
         for (size_t t = range.begin(); t != range.end(); ++t) {

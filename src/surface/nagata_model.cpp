@@ -44,7 +44,8 @@ Vec3 nagataCurvature(const Vec3& x0In, const Vec3& n0In, const Vec3& x1In, const
   return (dx.dot(dv) / oneMinusDeltaC) * v + (dx.dot(v) / deltaC) * dv;
 }
 
-NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
+NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
+    : QuadraticPatchModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
   resizeLarge(curvatures_, m.triangleCount());
@@ -73,22 +74,6 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceMode
     }
   });
   setFallbacks(std::move(gaveUp));
-}
-
-SurfacePoint NagataModel::evaluate(size_t t, double u, double v) const {
-  const QuadraticPatch patch = this->patch(t);
-  Vec3 du, dv;
-  patch.derivatives(u, v, du, dv);
-  return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
-}
-
-Vec3 NagataModel::position(size_t t, double u, double v) const {
-  return patch(t).position(u, v);
-}
-
-void NagataModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
-  const QuadraticPatch p = patch(t);
-  for (size_t i = 0; i < count; ++i) out[i] = p.position(uv[i].x(), uv[i].y());
 }
 
 nlohmann::json NagataModel::patchJson(size_t t) const {

@@ -11,7 +11,7 @@
 namespace quadtri {
 
 PhongModel::PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha)
-    : SurfaceModel(std::move(mesh)), alpha_(alpha) {
+    : QuadraticPatchModel(std::move(mesh)), alpha_(alpha) {
   if (!std::isfinite(alpha)) fail("phong: shape factor α = {} is not finite", alpha);
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
@@ -29,22 +29,6 @@ PhongModel::PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha)
       controlPoints_[t][i] = 0.5 * (tri.p[i] + tri.p[j]) - (0.5 * alpha_) * (removedI - removedJ);
     }
   });
-}
-
-SurfacePoint PhongModel::evaluate(size_t t, double u, double v) const {
-  const QuadraticPatch patch = this->patch(t);
-  Vec3 du, dv;
-  patch.derivatives(u, v, du, dv);
-  return {patch.position(u, v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
-}
-
-Vec3 PhongModel::position(size_t t, double u, double v) const {
-  return patch(t).position(u, v);
-}
-
-void PhongModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
-  const QuadraticPatch p = patch(t);
-  for (size_t i = 0; i < count; ++i) out[i] = p.position(uv[i].x(), uv[i].y());
 }
 
 nlohmann::json PhongModel::patchJson(size_t t) const {

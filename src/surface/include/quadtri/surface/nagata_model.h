@@ -5,8 +5,7 @@
 #include <array>
 #include <vector>
 
-#include "quadtri/surface/edge_curves.h"
-#include "quadtri/surface/model.h"
+#include "quadtri/surface/quadratic_model.h"
 
 namespace quadtri {
 
@@ -41,24 +40,17 @@ Vec3 nagataCurvature(const Vec3& x0, const Vec3& n0, const Vec3& x1, const Vec3&
 /// the edge takes creaseControlPoint (its tangent along the crease line n₁ × n₂) and
 /// c = x0 + x1 − 2b; nearly equal split normals are replaced by their mean. fellBack(t): the zero
 /// rule gave up an end tangent of one of the patch's edges (see nagataCurvature).
-class NagataModel final : public SurfaceModel {
+class NagataModel final : public QuadraticPatchModel {
  public:
   explicit NagataModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "nagata"; }
-  SurfacePoint evaluate(size_t t, double u, double v) const override;
-  Vec3 position(size_t t, double u, double v) const override;
-  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   nlohmann::json patchJson(size_t t) const override;
 
   /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).
   const Vec3& curvature(size_t t, int k) const { return curvatures_[t][k]; }
-  /// The quadratic Bézier form of patch t: its corners are the mesh's, its edge control points
-  /// the ones kept.
-  QuadraticPatch patch(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }
 
  private:
   std::vector<std::array<Vec3, 3>> curvatures_;
-  std::vector<std::array<Vec3, 3>> controlPoints_;
 };
 
 }  // namespace quadtri

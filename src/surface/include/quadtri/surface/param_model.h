@@ -4,8 +4,7 @@
 #include <array>
 #include <vector>
 
-#include "quadtri/surface/edge_curves.h"
-#include "quadtri/surface/model.h"
+#include "quadtri/surface/quadratic_model.h"
 
 namespace quadtri {
 
@@ -18,20 +17,11 @@ namespace quadtri {
 ///
 /// patchJson(t): {"vertices": [v0, v1, v2], "control_points": {"b01", "b12", "b20"},
 /// "coefficients": {"c0", ..., "c5"}}, every point an [x, y, z] array.
-class ParamModel final : public SurfaceModel {
+class ParamModel final : public QuadraticPatchModel {
  public:
   explicit ParamModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "quadric-param"; }
-  SurfacePoint evaluate(size_t t, double u, double v) const override;
-  Vec3 position(size_t t, double u, double v) const override;
-  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   nlohmann::json patchJson(size_t t) const override;
-
-  /// The quadratic Bézier triangle of triangle t.
-  QuadraticPatch patch(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }
-
- private:
-  std::vector<std::array<Vec3, 3>> controlPoints_;
 };
 
 }  // namespace quadtri

@@ -4,8 +4,7 @@
 #include <array>
 #include <vector>
 
-#include "quadtri/surface/edge_curves.h"
-#include "quadtri/surface/model.h"
+#include "quadtri/surface/quadratic_model.h"
 
 namespace quadtri {
 
@@ -29,22 +28,15 @@ namespace quadtri {
 /// corner is not the vertex normal in general (the other corners' tangent planes pull the
 /// corner tangents out of it: 2.64° on an icosahedron with sphere normals at α = 3/4); flat
 /// input gives the flat triangle.
-class PhongModel final : public SurfaceModel {
+class PhongModel final : public QuadraticPatchModel {
  public:
   explicit PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha = 0.75);
   std::string_view name() const override { return "phong"; }
-  SurfacePoint evaluate(size_t t, double u, double v) const override;
-  Vec3 position(size_t t, double u, double v) const override;
-  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   nlohmann::json patchJson(size_t t) const override;
   double alpha() const { return alpha_; }
-  /// The quadratic Bézier form of patch t (edge k joins corners k and k+1).
-  QuadraticPatch patch(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }
 
  private:
   double alpha_;
-  /// Each patch's three edge control points; its corners are the mesh's.
-  std::vector<std::array<Vec3, 3>> controlPoints_;
 };
 
 }  // namespace quadtri
