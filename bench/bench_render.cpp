@@ -20,7 +20,9 @@
 //
 // Summaries after the benchmarks give each model's render time ÷ shading's at equal samples on
 // setup (a), and per scene each compared model's ÷ shading's beside its target (implicit 1.15,
-// robust 1.2, g1 1.5), with the spread of the ratio over the icosphere series (target 1.1).
+// robust 1.2, g1 1.5) and its time per traced ray ÷ shading's (a curved surface sends paths
+// elsewhere, so the two ratios differ by the ratio of rays traced), with the spread of the
+// ratio over the icosphere series (target 1.1).
 //
 //   quadtri_bench_render --benchmark_min_time=0.5
 //   QUADTRI_CORPUS=corpus quadtri_bench_render --benchmark_filter=Ratio/
@@ -301,6 +303,14 @@ std::map<std::string, std::vector<double>>& ratioSeconds() {
   return seconds;
 }
 
+/// The rays each model traced per render in the ratio comparison, in ratioSeconds()' order: a
+/// curved surface sends paths elsewhere, so a ratio of times is a ratio of rays times a ratio
+/// of the cost per ray, and the summary gives the second beside the first.
+std::map<std::string, std::vector<double>>& ratioRays() {
+  static std::map<std::string, std::vector<double>> rays;
+  return rays;
+}
+
 /// The scene of the ratio comparison last asked for, built with shading and every compared
 /// model (once: the benchmark library calls a benchmark again to settle its iterations, and the
 /// builds stay out of the timing; only one scene is kept, the largest being gigabytes).
@@ -341,21 +351,26 @@ std::vector<BuiltScene>& ratioBuilt(const RatioScene& scene) {
 /// render down, and taking turns exposes every model to the same disturbances.
 void compareRatios(benchmark::State& state, const RatioScene& scene) {
   std::vector<BuiltScene>& built = ratioBuilt(scene);
-  std::vector<double> best(built.size(), kInfinity);
+  std::vector<double> best(built.size(), kInfinity), rays(built.size(), 0.0);
   for (auto _ : state)
     for (size_t m = 0; m < built.size(); ++m) {
       const RenderResult result = render(*built[m].scene, *built[m].integrator, built[m].options);
       benchmark::DoNotOptimize(result.image.pixels.data());
       best[m] = std::min(best[m], result.stats.seconds);
+      rays[m] = double(result.stats.rays);  // the same in every render: fixed seeds
     }
+  ratioRays()[scene.name] = rays;
   // The benchmark library may call this more than once per scene: keep the fastest of all.
   auto [it, inserted] = ratioSeconds().try_emplace(scene.name, best);
   if (!inserted)
     for (size_t m = 0; m < best.size(); ++m) it->second[m] = std::min(it->second[m], best[m]);
   const std::vector<RatioModel> models = ratioModels();
   state.counters["shading_s"] = best[0];
-  for (size_t m = 0; m < models.size(); ++m)
+  for (size_t m = 0; m < models.size(); ++m) {
     state.counters[std::string(models[m].name) + "/shading"] = best[m + 1] / best[0];
+    state.counters[std::string(models[m].name) + "/shading_per_ray"] =
+        (best[m + 1] / rays[m + 1]) / (best[0] / rays[0]);
+  }
 }
 
 /// Every compared model's render time against shading's, scene by scene, beside its target;
@@ -374,16 +389,18 @@ void printRatioSummary(const std::vector<RatioScene>& scenes) {
           "turns; target in brackets):\n  {:<16} {:>10}",
           kResolution, kResolution, kSamplesPerPixel, kThreads, "scene", "shading");
       for (const RatioModel& m : models)
-        fmt::print("  {:>30}", fmt::format("{} (<= {})", m.name, m.target));
+        fmt::print("  {:>42}", fmt::format("{} (<= {})", m.name, m.target));
       fmt::print("\n");
     }
     header = true;
     const std::vector<double>& s = it->second;
+    const std::vector<double>& r = ratioRays().at(scene.name);
     fmt::print("  {:<16} {:8.3f} s", scene.name, s[0]);
     for (size_t m = 0; m < models.size(); ++m) {
       const double ratio = s[m + 1] / s[0];
-      fmt::print("  {:>30}", fmt::format("{:.3f} s {:5.2f}x {:<6}", s[m + 1], ratio,
-                                         ratio <= models[m].target ? "pass" : "MISSED"));
+      const double perRay = ratio * r[0] / r[m + 1];
+      fmt::print("  {:>42}", fmt::format("{:.3f} s {:5.2f}x ({:4.2f}x/ray) {:<6}", s[m + 1], ratio,
+                                         perRay, ratio <= models[m].target ? "pass" : "MISSED"));
       if (scene.icosphereLevel >= 0) {
         seriesLow[m] = std::min(seriesLow[m], ratio);
         seriesHigh[m] = std::max(seriesHigh[m], ratio);
