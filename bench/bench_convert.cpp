@@ -5,6 +5,13 @@
 // from 1 to 2 threads. Each model converts the 1,000,000-triangle mesh three times.
 //
 //   quadtri_bench --benchmark_filter=Convert --benchmark_min_time=0.1
+//
+// Tessellate/<model>/<mesh>/level:N/threads:T times tessellate() alone on a model converted
+// once: level 1 on the 1,000,000-triangle torus (the lattice a render of a tessellated model
+// builds under `auto` there) and level 8 on icosphere level 5 (an export's default, 1,310,720
+// triangles out), with 1 and 2 threads; output triangles per second.
+//
+//   quadtri_bench --benchmark_filter=Tessellate
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
@@ -18,6 +25,7 @@
 #include "bench_peer.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/surface/model.h"
+#include "quadtri/surface/tessellate.h"
 
 namespace {
 
@@ -67,6 +75,32 @@ void convert(benchmark::State& state, const std::string& model, const std::strin
   state.counters["threads"] = threads;
 }
 
+// The model converted once per (model, mesh), shared by its tessellation benchmarks.
+std::shared_ptr<const quadtri::SurfaceModel> benchModel(const std::string& model,
+                                                        const std::string& spec) {
+  static std::map<std::pair<std::string, std::string>, std::shared_ptr<const quadtri::SurfaceModel>>
+      cache;
+  auto& slot = cache[{model, spec}];
+  if (!slot) slot = quadtri::makeModel(model, benchMesh(spec));
+  return slot;
+}
+
+void tessellateModel(benchmark::State& state, const std::string& model, const std::string& spec,
+                     int level, int threads) {
+  const std::shared_ptr<const quadtri::SurfaceModel> converted = benchModel(model, spec);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  const quadtri::Tessellation tessellation{quadtri::Tessellation::Kind::Lattice, level};
+  size_t triangles = 0;
+  for (auto _ : state) {
+    const quadtri::TriangleMesh out = quadtri::tessellate(*converted, tessellation);
+    triangles = out.triangleCount();
+    benchmark::DoNotOptimize(out.positions.data());
+  }
+  state.counters["triangles/s"] =
+      benchmark::Counter(double(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["threads"] = threads;
+}
+
 // icosphere level 5: 20,480 triangles; a 1000×500 torus: 1,000,000 triangles.
 const char* const kLargeMesh = "torus:1,0.35,1000,500";
 const char* const kMeshes[] = {"icosphere:5", kLargeMesh};
@@ -109,6 +143,18 @@ int main(int argc, char** argv) {
         // minutes.
         if (std::string(spec) == kLargeMesh) bench->Iterations(3);
       }
+  for (const std::string& model : quadtri::modelNames()) {
+    if (model == "flat" || model == "shading" || model == "shading-offset") continue;
+    for (const auto& [spec, level] : {std::pair{kLargeMesh, 1}, std::pair{"icosphere:5", 8}})
+      for (int threads : kThreads)
+        benchmark::RegisterBenchmark(("Tessellate/" + model + "/" + spec + "/level:" +
+                                      std::to_string(level) + "/threads:" + std::to_string(threads))
+                                         .c_str(),
+                                     tessellateModel, model, std::string(spec), level, threads)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->Iterations(3);
+  }
   registerPeerBenchmarks();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

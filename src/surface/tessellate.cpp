@@ -200,6 +200,10 @@ Tessellation renderTessellation(const SurfaceModel& model, const Tessellation& t
              : tessellation;
 }
 
+// Point and normal numbers stay below this (the largest a triangle can index, as the lattice
+// has always numbered them).
+constexpr uint32_t kExtraNormal = 1u << 31;
+
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {
   const TriangleMesh& mesh = model.mesh();
   if (model.representation() == Representation::InputTriangles) return mesh;
@@ -242,85 +246,139 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested
     }
   }
   TriangleMesh out;
-  // Points: each triangle's own (all of them, or its interior ones when welded) and, welded,
-  // one per vertex and `steps - 1` per edge (crease normals go to extraNormals).
-  size_t perTriangle = pattern.uv.size();
-  if (weld)
-    perTriangle =
-        size_t(std::count_if(pattern.sites.begin(), pattern.sites.end(), [](const PointSite& site) {
-          return site.kind == PointSite::Kind::Interior;
-        }));
-  const size_t points = mesh.triangleCount() * perTriangle +
-                        (weld ? mesh.positions.size() + topo.edges.size() * size_t(steps - 1) : 0);
-  const size_t triangles = mesh.triangleCount() * pattern.triangles.size();
-  reserveLarge(out.positions, points);
-  reserveLarge(out.normals, points);
-  reserveLarge(out.triangles, triangles);
+  const size_t n = mesh.triangleCount();
+  const size_t patternPoints = pattern.uv.size(), patternTriangles = pattern.triangles.size();
   std::vector<uint32_t> cornerVertex = largeVector(weld ? mesh.positions.size() : 0, ~0u);
   // Welded edge points: per mesh edge, `steps - 1` interior points from endpoint a to b.
   std::vector<uint32_t> edgeVertex =
       largeVector(weld ? topo.edges.size() * size_t(steps - 1) : 0, ~0u);
-  std::vector<uint32_t> local(pattern.uv.size()), localNormal(pattern.uv.size());
-  // Normals of a side at a crease point another side created; their indices are marked with
-  // kExtra until the per-point normals before them are all known.
-  constexpr uint32_t kExtra = 1u << 31;
-  std::vector<Vec3> extraNormals;
-  std::vector<Tri> normalIndices;
-  reserveLarge(normalIndices, triangles);
-  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-    for (size_t i = 0; i < pattern.uv.size(); ++i) {
-      const PointSite& s = pattern.sites[i];
-      uint32_t* slot = nullptr;
-      bool split = false;
-      if (weld && s.kind == PointSite::Kind::Corner) {
-        const uint32_t v = mesh.triangles[t][s.corner];
-        slot = &cornerVertex[v];
-        split = splitVertex[v];
-      } else if (weld && s.kind == PointSite::Kind::Edge) {
-        const uint32_t e = topo.edgeOf[t][s.edge];
-        const bool fromA = mesh.triangles[t][s.edge] == topo.edges[e].a;
-        const int step = fromA ? s.step : steps - s.step;
-        slot = &edgeVertex[size_t(e) * (steps - 1) + size_t(step - 1)];
-        split = splitEdge[e];
-      }
-      if (slot && *slot != ~0u) {
-        local[i] = *slot;
-        localNormal[i] = *slot;
-        if (split) {
-          const SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
-          const Vec3 n = safeNormalized(sp.normal, mesh.faceNormal(t));
-          if (n != out.normals[*slot]) {
-            localNormal[i] = kExtra | uint32_t(extraNormals.size());
-            extraNormals.push_back(n);
+  // The welded slot of point i of triangle t (its mesh vertex's or its edge point's), or null
+  // for a point of its own; `split` where the mesh splits normals there.
+  const auto slotOf = [&](size_t t, size_t i, bool& split) -> uint32_t* {
+    const PointSite& s = pattern.sites[i];
+    split = false;
+    if (weld && s.kind == PointSite::Kind::Corner) {
+      const uint32_t v = mesh.triangles[t][s.corner];
+      split = splitVertex[v];
+      return &cornerVertex[v];
+    }
+    if (weld && s.kind == PointSite::Kind::Edge) {
+      const uint32_t e = topo.edgeOf[t][s.edge];
+      const bool fromA = mesh.triangles[t][s.edge] == topo.edges[e].a;
+      const int step = fromA ? s.step : steps - s.step;
+      split = splitEdge[e];
+      return &edgeVertex[size_t(e) * size_t(steps - 1) + size_t(step - 1)];
+    }
+    return nullptr;
+  };
+  // The points are numbered as a walk over the triangles in order would number them: each
+  // triangle, point by point, numbers the ones no triangle before it numbered (welded, a mesh
+  // vertex or edge point is numbered once). Only that numbering is sequential, and it evaluates
+  // nothing; firstPoint[t] is the first number triangle t gives, so the evaluations and the
+  // triangles' indices then run in parallel, and the result does not depend on the threads.
+  std::vector<uint32_t> firstPoint = largeVector<uint32_t>(n + 1);
+  uint64_t next = 0;
+  for (size_t t = 0; t < n; ++t) {
+    firstPoint[t] = uint32_t(next);
+    for (size_t i = 0; i < patternPoints; ++i) {
+      bool split;
+      uint32_t* slot = slotOf(t, i, split);
+      if (slot && *slot != ~0u) continue;
+      if (slot) *slot = uint32_t(next);
+      if (++next >= uint64_t(kExtraNormal))
+        fail("tessellating {} patches at {} points each: more than {} points", n, patternPoints,
+             kExtraNormal);
+    }
+  }
+  firstPoint[n] = uint32_t(next);
+  resizeLarge(out.positions, next);
+  resizeLarge(out.normals, next);
+  resizeLarge(out.triangles, n * patternTriangles);
+  // Each triangle's point numbers, point by point: its own ones in the order it numbered them.
+  const auto localPoints = [&](size_t t, uint32_t* local, uint8_t* isNew, uint8_t* split) {
+    uint32_t own = firstPoint[t];
+    for (size_t i = 0; i < patternPoints; ++i) {
+      bool splitHere;
+      const uint32_t* slot = slotOf(t, i, splitHere);
+      split[i] = splitHere;
+      isNew[i] = !slot || *slot == own;
+      local[i] = isNew[i] ? own++ : *slot;
+    }
+  };
+  parallelForRange(
+      tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<uint32_t> local(patternPoints);
+        std::vector<uint8_t> isNew(patternPoints), split(patternPoints);
+        for (size_t t = range.begin(); t != range.end(); ++t) {
+          localPoints(t, local.data(), isNew.data(), split.data());
+          for (size_t i = 0; i < patternPoints; ++i) {
+            if (!isNew[i]) continue;
+            SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
+            // Corners are the mesh's own vertices, bit for bit.
+            const PointSite& s = pattern.sites[i];
+            if (s.kind == PointSite::Kind::Corner) sp.position = mesh.corner(t, s.corner);
+            out.positions[local[i]] = sp.position;
+            out.normals[local[i]] = safeNormalized(sp.normal, mesh.faceNormal(t));
+          }
+          for (size_t j = 0; j < patternTriangles; ++j) {
+            const Tri& tri = pattern.triangles[j];
+            out.triangles[t * patternTriangles + j] = {local[tri[0]], local[tri[1]], local[tri[2]]};
           }
         }
-        continue;
-      }
-      SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
-      // Corners are the mesh's own vertices, bit for bit.
-      if (s.kind == PointSite::Kind::Corner) sp.position = mesh.corner(t, s.corner);
-      local[i] = uint32_t(out.positions.size());
-      localNormal[i] = local[i];
-      out.positions.push_back(sp.position);
-      out.normals.push_back(safeNormalized(sp.normal, mesh.faceNormal(t)));
-      if (slot) *slot = local[i];
+      });
+  resizeLarge(out.normalIndices, out.triangles.size());
+  out.normalIndices = out.triangles;
+  if (!weld || (std::find(splitVertex.begin(), splitVertex.end(), true) == splitVertex.end() &&
+                std::find(splitEdge.begin(), splitEdge.end(), true) == splitEdge.end()))
+    return out;
+  // Crease normals: where a triangle reuses a point at a split vertex or edge, its own surface
+  // normal there, when it differs from the one the point was numbered with, becomes an extra
+  // normal after the points' ones, numbered in the order of the walk above. Counted, then
+  // written (evaluating those few points twice).
+  const auto creaseNormals = [&](size_t t, std::vector<std::pair<size_t, Vec3>>& found) {
+    found.clear();
+    std::vector<uint32_t> local(patternPoints);
+    std::vector<uint8_t> isNew(patternPoints), split(patternPoints);
+    localPoints(t, local.data(), isNew.data(), split.data());
+    for (size_t i = 0; i < patternPoints; ++i) {
+      if (isNew[i] || !split[i]) continue;
+      const SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
+      const Vec3 normal = safeNormalized(sp.normal, mesh.faceNormal(t));
+      if (normal != out.normals[local[i]]) found.emplace_back(i, normal);
     }
-    for (const Tri& tri : pattern.triangles) {
-      out.triangles.push_back({local[tri[0]], local[tri[1]], local[tri[2]]});
-      normalIndices.push_back({localNormal[tri[0]], localNormal[tri[1]], localNormal[tri[2]]});
-    }
-  }
-  if (extraNormals.empty()) {
-    reserveLarge(out.normalIndices, out.triangles.size());
-    out.normalIndices = out.triangles;
-  } else {
-    const uint32_t base = uint32_t(out.normals.size());
-    out.normals.insert(out.normals.end(), extraNormals.begin(), extraNormals.end());
-    for (Tri& tri : normalIndices)
-      for (uint32_t& n : tri)
-        if (n & kExtra) n = base + (n & ~kExtra);
-    out.normalIndices = std::move(normalIndices);
-  }
+  };
+  std::vector<uint32_t> extraBefore = largeVector<uint32_t>(n + 1);
+  parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     std::vector<std::pair<size_t, Vec3>> found;
+                     for (size_t t = range.begin(); t != range.end(); ++t) {
+                       creaseNormals(t, found);
+                       extraBefore[t + 1] = uint32_t(found.size());
+                     }
+                   });
+  for (size_t t = 0; t < n; ++t) extraBefore[t + 1] += extraBefore[t];
+  if (extraBefore[n] == 0) return out;
+  const size_t base = out.normals.size();
+  if (base + extraBefore[n] >= size_t(kExtraNormal))
+    fail("tessellating {} patches: more than {} normals", n, kExtraNormal);
+  out.normals.resize(base + extraBefore[n]);
+  parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     std::vector<std::pair<size_t, Vec3>> found;
+                     for (size_t t = range.begin(); t != range.end(); ++t) {
+                       if (extraBefore[t] == extraBefore[t + 1]) continue;
+                       creaseNormals(t, found);
+                       for (size_t f = 0; f < found.size(); ++f) {
+                         const auto [i, normal] = found[f];
+                         const uint32_t index = uint32_t(base + extraBefore[t] + f);
+                         out.normals[index] = normal;
+                         for (size_t j = 0; j < patternTriangles; ++j)
+                           for (int c = 0; c < 3; ++c)
+                             if (size_t(pattern.triangles[j][c]) == i)
+                               out.normalIndices[t * patternTriangles + j][c] = index;
+                       }
+                     }
+                   });
   return out;
 }
 

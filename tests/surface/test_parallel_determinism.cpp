@@ -1,5 +1,6 @@
 // Conversion runs in parallel over triangles and edges: with 1 and with 2 threads every model
-// must give the same patch records, bit for bit.
+// must give the same patch records, bit for bit. So must tessellation, which numbers the
+// lattice's points as a walk over the triangles in order would and evaluates them in parallel.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -12,6 +13,7 @@
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/quadric_patch.h"
+#include "quadtri/surface/tessellate.h"
 
 namespace quadtri {
 namespace {
@@ -75,6 +77,38 @@ TEST(ParallelConversion, OneAndTwoThreadsGiveBitwiseEqualPatches) {
       EXPECT_EQ(
           std::memcmp(one.numbers.data(), two.numbers.data(), one.numbers.size() * sizeof(double)),
           0);
+    }
+  }
+}
+
+TriangleMesh tessellateWith(int threads, const SurfaceModel& model, const Tessellation& t) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  return tessellate(model, t);
+}
+
+bool sameBits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+}
+
+TEST(ParallelTessellation, OneAndTwoThreadsGiveTheSameLattice) {
+  // The cylinder splits its normals at the rims (crease points get normals of their own), the
+  // torus does not; both are large enough that the loops split.
+  for (const char* spec : {"cylinder:64,32", "torus:1,0.35,64,32"}) {
+    const auto mesh = std::make_shared<const TriangleMesh>(parseBuiltinSpec(spec)->mesh);
+    for (const std::string& name : modelNames()) {
+      SCOPED_TRACE(std::string(spec) + " " + name);
+      const auto model = makeModel(name, mesh);
+      const Tessellation level{Tessellation::Kind::Lattice, 3};
+      const TriangleMesh one = tessellateWith(1, *model, level);
+      const TriangleMesh two = tessellateWith(2, *model, level);
+      EXPECT_EQ(one.triangles, two.triangles);
+      EXPECT_EQ(one.normalIndices, two.normalIndices);
+      EXPECT_TRUE(sameBits(one.positions, two.positions));
+      EXPECT_TRUE(sameBits(one.normals, two.normals));
+      if (model->sharesEdges() && model->representation() != Representation::InputTriangles &&
+          std::string(spec).starts_with("cylinder")) {
+        EXPECT_GT(one.normals.size(), one.positions.size());  // the rims' own normals
+      }
     }
   }
 }
