@@ -444,19 +444,24 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
   // PLY has per-vertex attributes only: split normals become duplicated vertices, one per
   // distinct (position, normal) pair, numbered by first appearance in corner order.
   const size_t corners = 3 * mesh.triangles.size();
-  std::vector<uint32_t> vertexOf(corners);  // corner -> PLY vertex
-  std::vector<uint32_t> cornerOf;           // PLY vertex -> its first corner
-  if (!mesh.hasNormals()) {
-    std::vector<uint32_t> id(mesh.positions.size(), ~0u);
+  std::vector<uint32_t> vertexOf;  // corner -> PLY vertex (the general case only)
+  std::vector<uint32_t> cornerOf;  // PLY vertex -> its first corner
+  // Where every corner's normal index is its position index (no normals, or one normal per
+  // point, as a tessellated surface without creases has), the pairs are the positions: a PLY
+  // vertex per position, numbered by first appearance, with no table per corner.
+  const bool onePerPosition = !mesh.hasNormals() || mesh.normalIndices == mesh.triangles;
+  std::vector<uint32_t> idOfPosition;  // position -> PLY vertex, in that case
+  if (onePerPosition) {
+    idOfPosition.assign(mesh.positions.size(), ~0u);
     for (size_t c = 0; c < corners; ++c) {
-      uint32_t& v = id[mesh.triangles[c / 3][c % 3]];
+      uint32_t& v = idOfPosition[mesh.triangles[c / 3][c % 3]];
       if (v == ~0u) {
         v = uint32_t(cornerOf.size());
         cornerOf.push_back(uint32_t(c));
       }
-      vertexOf[c] = v;
     }
   } else {
+    vertexOf.resize(corners);
     std::vector<std::array<uint32_t, 3>> pairs(corners);
     parallelFor(size_t(0), corners, [&](size_t c) {
       pairs[c] = {mesh.triangles[c / 3][c % 3], mesh.normalIndices[c / 3][c % 3], 0};
@@ -500,7 +505,8 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
     }
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       put(uint8_t(3));
-      for (int k = 0; k < 3; ++k) put(vertexOf[3 * t + k]);
+      for (int k = 0; k < 3; ++k)
+        put(onePerPosition ? idOfPosition[mesh.triangles[t][k]] : vertexOf[3 * t + k]);
       flush(false);
     }
     flush(true);

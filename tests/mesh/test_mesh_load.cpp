@@ -168,7 +168,13 @@ TEST_F(MeshLoad, SavedFilesAreTheBytesTheyWereBeforeStreaming) {
     TriangleMesh bare = mesh;
     bare.normals.clear();
     bare.normalIndices.clear();
-    for (const TriangleMesh* m : {&mesh, &bare}) {
+    // One normal per point, indexed as the points are (a tessellated surface without creases):
+    // the writer's path without a table per corner.
+    TriangleMesh perPoint = bare;
+    for (size_t v = 0; v < perPoint.positions.size(); ++v)
+      perPoint.normals.push_back(Vec3(0.0, 0.6, 0.8) + 1e-3 * double(v) * Vec3::UnitX());
+    perPoint.normalIndices = perPoint.triangles;
+    for (const TriangleMesh* m : {&mesh, &bare, &perPoint}) {
       saveMesh(*m, dir / "out.obj");
       saveMesh(*m, dir / "out.ply");
       EXPECT_EQ(readAll(dir / "out.obj"), referenceObj(*m)) << spec;
