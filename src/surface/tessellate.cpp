@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 #include "quadtri/math/error.h"
@@ -200,9 +201,8 @@ Tessellation renderTessellation(const SurfaceModel& model, const Tessellation& t
              : tessellation;
 }
 
-// Point and normal numbers stay below this (the largest a triangle can index, as the lattice
-// has always numbered them).
-constexpr uint32_t kExtraNormal = 1u << 31;
+// The most points or normals a lattice can number: a 32-bit index, below the empty slot's ~0u.
+constexpr uint64_t kMaxLatticeIndex = std::numeric_limits<uint32_t>::max() - 1;
 
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {
   const TriangleMesh& mesh = model.mesh();
@@ -285,9 +285,9 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested
       uint32_t* slot = slotOf(t, i, split);
       if (slot && *slot != ~0u) continue;
       if (slot) *slot = uint32_t(next);
-      if (++next >= uint64_t(kExtraNormal))
+      if (++next > kMaxLatticeIndex)
         fail("tessellating {} patches at {} points each: more than {} points", n, patternPoints,
-             kExtraNormal);
+             kMaxLatticeIndex);
     }
   }
   firstPoint[n] = uint32_t(next);
@@ -347,20 +347,20 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested
       if (normal != out.normals[local[i]]) found.emplace_back(i, normal);
     }
   };
-  std::vector<uint32_t> extraBefore = largeVector<uint32_t>(n + 1);
+  std::vector<size_t> extraBefore = largeVector<size_t>(n + 1);
   parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
                    [&](const tbb::blocked_range<size_t>& range) {
                      std::vector<std::pair<size_t, Vec3>> found;
                      for (size_t t = range.begin(); t != range.end(); ++t) {
                        creaseNormals(t, found);
-                       extraBefore[t + 1] = uint32_t(found.size());
+                       extraBefore[t + 1] = found.size();
                      }
                    });
   for (size_t t = 0; t < n; ++t) extraBefore[t + 1] += extraBefore[t];
   if (extraBefore[n] == 0) return out;
   const size_t base = out.normals.size();
-  if (base + extraBefore[n] >= size_t(kExtraNormal))
-    fail("tessellating {} patches: more than {} normals", n, kExtraNormal);
+  if (base + extraBefore[n] > kMaxLatticeIndex)
+    fail("tessellating {} patches: more than {} normals", n, kMaxLatticeIndex);
   out.normals.resize(base + extraBefore[n]);
   parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
                    [&](const tbb::blocked_range<size_t>& range) {

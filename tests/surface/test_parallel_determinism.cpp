@@ -92,13 +92,18 @@ bool sameBits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
 
 TEST(ParallelTessellation, OneAndTwoThreadsGiveTheSameLattice) {
   // The cylinder splits its normals at the rims (crease points get normals of their own), the
-  // torus does not; both are large enough that the loops split.
-  for (const char* spec : {"cylinder:64,32", "torus:1,0.35,64,32"}) {
+  // torus does not; at levels 1 and 3 both are large enough that the loops split, and the
+  // thesis grid (whose last row of points all lie at corner 2) runs on a small cylinder.
+  const std::vector<std::pair<const char*, Tessellation>> cases = {
+      {"cylinder:64,32", Tessellation{Tessellation::Kind::Lattice, 1}},
+      {"cylinder:64,32", Tessellation{Tessellation::Kind::Lattice, 3}},
+      {"torus:1,0.35,64,32", Tessellation{Tessellation::Kind::Lattice, 3}},
+      {"cylinder:8,2", Tessellation::thesis()}};
+  for (const auto& [spec, level] : cases) {
     const auto mesh = std::make_shared<const TriangleMesh>(parseBuiltinSpec(spec)->mesh);
     for (const std::string& name : modelNames()) {
-      SCOPED_TRACE(std::string(spec) + " " + name);
+      SCOPED_TRACE(std::string(spec) + " " + name + " level " + std::to_string(level.level));
       const auto model = makeModel(name, mesh);
-      const Tessellation level{Tessellation::Kind::Lattice, 3};
       const TriangleMesh one = tessellateWith(1, *model, level);
       const TriangleMesh two = tessellateWith(2, *model, level);
       EXPECT_EQ(one.triangles, two.triangles);
