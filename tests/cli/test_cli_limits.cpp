@@ -89,15 +89,16 @@ TEST(CliLimits, ConvertRefusesHostileHeadersAtOnceAndWritesNothing) {
 
 TEST(CliLimits, MaxMemoryRefusesMeshesWhoseModelWouldNotFit) {
   const fs::path dir = freshDir("max-memory");
-  // 2 triangles, tessellated at the thesis' 4802 triangles per patch: far over 1 MiB.
+  // 2 triangles, tessellated at the thesis' 4802 triangles per patch: over 256 KiB.
   std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
-  CliProcess p({"convert", (dir / "quad.obj").string(), "--model", "quadric-param",
-                "--tessellation", "thesis", "--max-memory", "1M", "-o", (dir / "out.obj").string()},
-               dir);
+  CliProcess p(
+      {"convert", (dir / "quad.obj").string(), "--model", "quadric-param", "--tessellation",
+       "thesis", "--max-memory", "256K", "-o", (dir / "out.obj").string()},
+      dir);
   expectRefused(p, dir, dir / "quad.obj",
                 {"needs about", "building", "per triangle",
                  "over the --max-memory limit of "
-                 "1.00 MiB"},
+                 "256 KiB"},
                 "out.obj");
   // The same within a larger limit is written.
   CliProcess ok(
