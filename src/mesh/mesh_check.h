@@ -45,9 +45,10 @@ std::string lowerExtension(const std::filesystem::path& path);
 /// inspectMeshFile on the file's bytes, already read (readMeshFile): what loadMesh does, so the
 /// file is read once for the checks and the reader. `path` names the file in errors and gives
 /// its format by extension. With offBody false, an OFF file's header alone is checked: its body
-/// is left to readOffBody, which checks it as it reads it.
+/// is left to readOffBody, which checks it as it reads it. An ASCII PLY file's text for Assimp
+/// goes to `plyAssimpText` (inspectPly).
 MeshFileInfo inspectMeshBytes(const std::filesystem::path& path, std::string_view bytes,
-                              bool offBody = true);
+                              bool offBody = true, std::string* plyAssimpText = nullptr);
 
 /// The whole file; throws Error naming it when it cannot be read.
 std::string readMeshFile(const std::filesystem::path& path);
@@ -140,7 +141,14 @@ class MemoryStream : public std::istream {
 };
 
 /// PLY: the header, each declared count against the file's size, and the body element by
-/// element (ply_check.cpp). `bytes` is the whole file, named `path` in errors.
-MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view bytes);
+/// element (ply_check.cpp). `bytes` is the whole file, named `path` in errors. With
+/// `assimpText`, an ASCII file is also written there as Assimp is to read it (left empty for a
+/// binary one): the header's elements and properties alone, then each element on a line of its
+/// own with every property present. Assimp 5.2's reader of ASCII PLY reads a line short of its
+/// properties on into what is left in its line buffer from longer lines before (a list count of
+/// 1.5 billion from an earlier line's digits, fuzz_ply), returns some blank lines as elements and
+/// ends an element's properties at a comment, so it is given no such line.
+MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view bytes,
+                        std::string* assimpText = nullptr);
 
 }  // namespace quadtri::mesh_check

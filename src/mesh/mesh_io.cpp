@@ -320,6 +320,7 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
   MeshFileInfo info;
   FileDigest digest;
   std::optional<mesh_check::ObjCorners> plain;
+  std::string plyText;  // an ASCII PLY file as Assimp is given it (inspectPly)
   bool plainTried = false;
   const bool plainObj = reader == MeshReader::Auto && ext == ".obj";
   const uint64_t plainBytes = kPlainObjBytesPerByte * uint64_t(bytes.size());
@@ -336,7 +337,7 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     plainTried = true;
   } else {
     // An OFF file's body is checked by the reader that reads it (readOffBody), below.
-    info = mesh_check::inspectMeshBytes(path, bytes, /*offBody=*/ext != ".off");
+    info = mesh_check::inspectMeshBytes(path, bytes, /*offBody=*/ext != ".off", &plyText);
     if (ext != ".off") digest = FileDigest::of(bytes);
   }
   // The OBJ pre-pass counts faces exactly; without this, Assimp's refusal ("all meshes are
@@ -382,7 +383,7 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
              body.firstEmptyFaceLine);
       digest = FileDigest::of(bytes);
     }
-    mesh = loadWithAssimp(name, ext, bytes);
+    mesh = loadWithAssimp(name, ext, plyText.empty() ? bytes : plyText);
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
   repairMesh(mesh);

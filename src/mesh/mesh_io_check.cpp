@@ -362,7 +362,7 @@ MeshFileInfo inspectMeshFile(const std::filesystem::path& path) {
 }
 
 MeshFileInfo mesh_check::inspectMeshBytes(const std::filesystem::path& path, std::string_view bytes,
-                                          bool offBody) {
+                                          bool offBody, std::string* plyAssimpText) {
   const std::string name = path.string();
   const std::string ext = lowerExtension(path);
   MeshFileInfo info;
@@ -371,7 +371,7 @@ MeshFileInfo mesh_check::inspectMeshBytes(const std::filesystem::path& path, std
   else if (ext == ".off")
     info = inspectOff(path, bytes, offBody);
   else if (ext == ".ply")
-    info = mesh_check::inspectPly(path, bytes);
+    info = mesh_check::inspectPly(path, bytes, plyAssimpText);
   else if (ext == ".stl")
     info = inspectStl(path, bytes);
   else
@@ -399,7 +399,9 @@ uint64_t estimateLoadBytes(const MeshFileInfo& info) {
   else if (info.format.rfind("STL", 0) == 0)
     c = {24, 130, 0};
   const double others = double(info.normals + info.texcoords + info.otherElements);
-  const double bytes = 2.0 * double(info.fileBytes) + c.vertex * double(info.vertices) +
+  // An ASCII PLY file is given to Assimp rewritten (inspectPly): one more copy of about its size.
+  const double copies = info.format == "PLY ascii" ? 3.0 : 2.0;
+  const double bytes = copies * double(info.fileBytes) + c.vertex * double(info.vertices) +
                        c.face * double(info.triangles) + c.other * others;
   return bytes >= 0x1p63 ? uint64_t(1) << 63 : uint64_t(bytes);
 }

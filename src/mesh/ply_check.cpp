@@ -10,6 +10,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstring>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -163,20 +164,35 @@ void checkBinaryBody(std::istream& in, uint64_t bodyBytes, const std::vector<Ele
 }
 
 // Whether an ASCII word is one whole value of type `t`, as Assimp must read it to stay in step
-// with the line: an integer (sign allowed) for integer types, any decimal number for float and
-// double. Assimp does not consume a word it cannot read, so one such word shifts every value
-// after it, list counts included (fuzz_ply: a ",2.3" made a list count of a coordinate).
+// with the line: an integer for integer types, any decimal number for float and double, with
+// at most one sign. Assimp does not consume a word it cannot read, so one such word shifts every
+// value after it, list counts included (fuzz_ply: a ",2.3" made a list count of a coordinate).
+// It reads an unsigned type's digits only: "-5" in a uchar would leave the word to a signed
+// list count after it, read as 4294967291 values, so a '-' is refused there (and a '+' is
+// dropped from the text Assimp is given, checkAsciiBody). Of a "nan(...)"
+// it reads the "nan", and the rest would shift the line the same way.
 bool asciiValue(std::string_view word, const PlyType& t) {
-  if (word.size() > 1 && word[0] == '+') word.remove_prefix(1);
+  const auto sign = [](char c) { return c == '-' || c == '+'; };
+  if (!word.empty() && sign(word[0]) &&
+      ((t.isInteger && !t.isSigned && word[0] == '-') || word.size() == 1 || sign(word[1])))
+    return false;
+  if (!word.empty() && word[0] == '+') word.remove_prefix(1);
   const char* end = word.data() + word.size();
   if (t.isInteger) {
     int64_t i = 0;
     const auto [ptr, ec] = std::from_chars(word.data(), end, i);
     return ptr == end && (ec == std::errc() || ec == std::errc::result_out_of_range);
   }
+  if (word.find('(') != std::string_view::npos) return false;
   double d = 0.0;
   const auto [ptr, ec] = std::from_chars(word.data(), end, d);
   return ptr == end && (ec == std::errc() || ec == std::errc::result_out_of_range);
+}
+
+// What asciiValue wants of a word of type `t`, for errors.
+std::string_view expectedValue(const PlyType& t) {
+  if (!t.isInteger) return "a number";
+  return t.isSigned ? "an integer" : "an unsigned integer";
 }
 
 // Whether Assimp reads the whole of a float word: it reads the integer part as a 64-bit
@@ -193,11 +209,14 @@ bool assimpReadsFloat(std::string_view word) {
   return digits <= 19;
 }
 
-// ASCII: one element per line (as Assimp reads them), each line holding a value per scalar
-// property and, per list, its count and that many values; blank lines are skipped, words past
-// the last property ignored and properties past the line's last word absent (as Assimp does).
+// ASCII: one element per line, each line holding a value per scalar property and, per list,
+// its count and that many values; blank lines are skipped, words past the last property ignored
+// and properties past the line's last word absent (Blender 2.77 wrote a vertex list without
+// values, assimp-testmodels' PLY/issue623.ply). With `out`, appends each element's line as
+// Assimp is to be given it (see inspectPly): its values, an absent scalar as 0 and an absent list
+// as the one 0 Assimp gives it, and a '\n'.
 void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& elements,
-                    const std::string& name) {
+                    const std::string& name, std::string* out) {
   std::string line;
   for (const Element& e : elements)
     for (uint64_t i = 0; i < e.count; ++i) {
@@ -208,7 +227,7 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
         ++lineNo;
         if (line.find('\0') != std::string::npos)
           fail("{}:{}: a NUL byte in an ASCII PLY file", name, lineNo);
-        // Separators are spaces and tabs, for Assimp as here (a trailing \r ends the line).
+        // Separators are spaces and tabs (a trailing \r ends the line).
         for (size_t j = 0; j < line.size(); ++j) {
           const auto c = static_cast<unsigned char>(line[j]);
           if ((c < 0x20 && c != '\t' && !(c == '\r' && j + 1 == line.size())) || c == 0x7f)
@@ -218,10 +237,19 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
         w = words(line);
       } while (w.empty());
       size_t k = 0;
+      const auto emit = [&](std::string_view word) {
+        if (!out) return;
+        if (!out->empty() && out->back() != '\n') out->push_back(' ');
+        // Assimp reads an unsigned integer's digits only (asciiValue allows no '-' there).
+        if (!word.empty() && word[0] == '+') word.remove_prefix(1);
+        out->append(word);
+      };
       for (const Property& p : e.properties) {
-        // A line short of its last properties: Assimp reads them as absent (Blender 2.77
-        // wrote a vertex list without values, assimp-testmodels' PLY/issue623.ply).
-        if (k >= w.size()) break;
+        if (k >= w.size()) {
+          if (p.count) emit("1");
+          emit("0");
+          continue;
+        }
         const auto checkFloat = [&](std::string_view word) {
           if (!p.value->isInteger && !assimpReadsFloat(word))
             fail(
@@ -232,8 +260,9 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
         if (!p.count) {
           if (!asciiValue(w[k], *p.value))
             fail("{}:{}: element '{}' {}: property '{}' is '{}', expected {}", name, lineNo, e.name,
-                 i, p.name, w[k], p.value->isInteger ? "an integer" : "a number");
+                 i, p.name, w[k], expectedValue(*p.value));
           checkFloat(w[k]);
+          emit(w[k]);
           ++k;
           continue;
         }
@@ -243,20 +272,24 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
               "{}:{}: element '{}' {}: list '{}' has count '{}', expected an unsigned integer "
               "followed by that many values on the line",
               name, lineNo, e.name, i, p.name, w[k]);
-        for (size_t j = k + 1; j <= k + size_t(*n); ++j)
+        emit(w[k]);
+        for (size_t j = k + 1; j <= k + size_t(*n); ++j) {
           if (!asciiValue(w[j], *p.value))
             fail("{}:{}: element '{}' {}: list '{}' holds '{}', expected {}", name, lineNo, e.name,
-                 i, p.name, w[j], p.value->isInteger ? "an integer" : "a number");
-          else
-            checkFloat(w[j]);
+                 i, p.name, w[j], expectedValue(*p.value));
+          checkFloat(w[j]);
+          emit(w[j]);
+        }
         k += 1 + size_t(*n);
       }
+      if (out) out->push_back('\n');
     }
 }
 
 }  // namespace
 
-MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view bytes) {
+MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view bytes,
+                        std::string* assimpText) {
   const std::string name = path.string();
   const uint64_t fileBytes = bytes.size();
   MemoryStream in(bytes);
@@ -414,8 +447,24 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view byte
     else
       info.otherElements += e.count;
   }
+  std::string* text = format == "ascii" ? assimpText : nullptr;
+  if (text) {
+    text->clear();
+    text->reserve(bytes.size() + 64);
+    text->append("ply\nformat ascii 1.0\n");
+    for (const Element& e : elements) {
+      fmt::format_to(std::back_inserter(*text), "element {} {}\n", e.name, e.count);
+      for (const Property& p : e.properties)
+        if (p.count)
+          fmt::format_to(std::back_inserter(*text), "property list {} {} {}\n", p.count->name,
+                         p.value->name, p.name);
+        else
+          fmt::format_to(std::back_inserter(*text), "property {} {}\n", p.value->name, p.name);
+    }
+    text->append("end_header\n");
+  }
   if (format == "ascii")
-    checkAsciiBody(in, lineNo, elements, name);
+    checkAsciiBody(in, lineNo, elements, name, text);
   else
     checkBinaryBody(in, body, elements, format == "binary_big_endian", name);
   info.corners = 3 * info.faces;

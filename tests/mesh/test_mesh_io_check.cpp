@@ -277,6 +277,52 @@ TEST(MeshIoCheck, PlyListCountsAreCheckedAgainstTheBytesLeft) {
   EXPECT_EQ(loadMesh(writeFile("obj-info-ok.ply", between)).triangleCount(), 1u);
 }
 
+// Assimp 5.2 reads an ASCII PLY line by line into one buffer that keeps what longer lines
+// left in it: a line short of its properties read the rest from there (a list count of
+// 1,491,307,314 from an earlier line's word, 12 GB), a blank line after another or after a CRLF
+// line became an element, and a comment ended an element's properties. Assimp is given each
+// element on a line of its own with every property present, so the mesh is the file's, read
+// as the checks read it.
+TEST(MeshIoCheck, AsciiPlyReachesAssimpOneCompleteElementPerLine) {
+  const auto header = [](const std::string& comment) {
+    return "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 3\nproperty float x\n" +
+           comment +
+           "property float y\nproperty float z\nproperty list uchar int vertex_indices\n"
+           "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  };
+  // Vertex 1 stops after its y: z reads 0 and its list one 0, not the words of vertex 0.
+  const std::string body = "0 0 0 0 9 9 9 9 9 9 1491307314\n1 00000000000000\n0 1 0 0\n3 0 1 2\n";
+  const TriangleMesh mesh = loadMesh(writeFile("short.ply", header("") + body));
+  ASSERT_EQ(mesh.triangleCount(), 1u);
+  EXPECT_EQ(mesh.positions[mesh.triangles[0][1]], Vec3(1, 0, 0));
+  // Blank lines, LF or CRLF, one or several, are skipped, and a comment among the properties
+  // ends none: the same mesh.
+  const std::string blank = header("comment among the properties\n") +
+                            "0 0 0 0 9 9 9 9 9 9 1491307314\n\n\n1 0\n\n0 1 0 0\n\n\n\n3 0 1 2\n";
+  EXPECT_EQ(loadMesh(writeFile("blank.ply", blank)).positions, mesh.positions);
+  std::string crlf;
+  for (const char c : blank) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  EXPECT_EQ(loadMesh(writeFile("crlf.ply", crlf)).positions, mesh.positions);
+  // Assimp reads an unsigned value's digits only: "-5" would stay for the signed list count
+  // after it, 4294967291 values.
+  const std::string sign =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty uchar flags\n"
+      "property list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  expectContains(refusal([&] { loadMesh(writeFile("sign.ply", sign + "-5 3 0 1 2\n")); }),
+                 {"sign.ply:14: element 'face' 0: property 'flags' is '-5', expected an unsigned "
+                  "integer"});
+  expectContains(refusal([&] { loadMesh(writeFile("signs.ply", sign + "5 +-3 0 1 2\n")); }),
+                 {"signs.ply:14: element 'face' 0: list 'vertex_indices' has count '+-3'"});
+  expectContains(refusal([&] {
+                   loadMesh(writeFile("nan.ply",
+                                      "ply\nformat ascii 1.0\nelement vertex 1\n"
+                                      "property float x\nend_header\nnan(7)\n"));
+                 }),
+                 {"nan.ply:6: element 'vertex' 0: property 'x' is 'nan(7)', expected a number"});
+  EXPECT_EQ(loadMesh(writeFile("plus.ply", sign + "+5 3 0 +1 2\n")).triangleCount(), 1u);
+}
+
 TEST(MeshIoCheck, BinaryStlCountsOverTheFileSizeAreRefused) {
   const fs::path path = writeFile("big.stl", binaryStl(100000000, 1));
   expectContains(refusal([&] { loadMesh(path); }),
