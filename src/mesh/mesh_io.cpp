@@ -400,6 +400,29 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
   return loadMeshWith(MeshReader::Auto, path, normals, budget);
 }
 
+namespace {
+
+// Writes line(b, i) for every i in [0, count), in order. The lines are formatted in parallel,
+// kChunk to a buffer and kWindow buffers at a time, then written in order: the text held is a
+// window's, a few MB, and the bytes are those of formatting them one by one.
+template <typename Line>
+void writeLines(std::ostream& out, size_t count, const Line& line) {
+  constexpr size_t kChunk = 16384, kWindow = 8;
+  std::vector<fmt::memory_buffer> text(kWindow);
+  for (size_t first = 0; first < count; first += kChunk * kWindow) {
+    const size_t chunks = std::min(kWindow, (count - first + kChunk - 1) / kChunk);
+    parallelFor(size_t(0), chunks, [&](size_t c) {
+      fmt::memory_buffer& b = text[c];
+      b.clear();
+      const size_t begin = first + c * kChunk, end = std::min(count, begin + kChunk);
+      for (size_t i = begin; i < end; ++i) line(b, i);
+    });
+    for (size_t c = 0; c < chunks; ++c) out.write(text[c].data(), std::streamsize(text[c].size()));
+  }
+}
+
+}  // namespace
+
 void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
   const std::string ext = mesh_check::lowerExtension(path);
   for (const Vec3& p : mesh.positions)
@@ -410,35 +433,25 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
   constexpr size_t kFlush = size_t(1) << 20;
   if (ext == ".obj") {
     writeStreamAtomically(path, [&](std::ostream& out) {
-      fmt::memory_buffer buffer;
-      const auto flush = [&](bool always) {
-        if (!always && buffer.size() < kFlush) return;
-        out.write(buffer.data(), std::streamsize(buffer.size()));
-        buffer.clear();
-      };
+      out << "# written by quadtri\n";
       // %.17g, as an ostream with precision 17 writes a double: every double reads back exactly.
-      fmt::format_to(std::back_inserter(buffer), "# written by quadtri\n");
-      for (const Vec3& p : mesh.positions) {
-        fmt::format_to(std::back_inserter(buffer), "v {:.17g} {:.17g} {:.17g}\n", p.x(), p.y(),
-                       p.z());
-        flush(false);
-      }
-      for (const Vec3& n : mesh.normals) {
-        fmt::format_to(std::back_inserter(buffer), "vn {:.17g} {:.17g} {:.17g}\n", n.x(), n.y(),
-                       n.z());
-        flush(false);
-      }
-      for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-        buffer.push_back('f');
+      writeLines(out, mesh.positions.size(), [&](fmt::memory_buffer& b, size_t i) {
+        const Vec3& p = mesh.positions[i];
+        fmt::format_to(std::back_inserter(b), "v {:.17g} {:.17g} {:.17g}\n", p.x(), p.y(), p.z());
+      });
+      writeLines(out, mesh.normals.size(), [&](fmt::memory_buffer& b, size_t i) {
+        const Vec3& n = mesh.normals[i];
+        fmt::format_to(std::back_inserter(b), "vn {:.17g} {:.17g} {:.17g}\n", n.x(), n.y(), n.z());
+      });
+      writeLines(out, mesh.triangles.size(), [&](fmt::memory_buffer& b, size_t t) {
+        b.push_back('f');
         for (int k = 0; k < 3; ++k) {
-          fmt::format_to(std::back_inserter(buffer), " {}", mesh.triangles[t][k] + 1);
+          fmt::format_to(std::back_inserter(b), " {}", mesh.triangles[t][k] + 1);
           if (mesh.hasNormals())
-            fmt::format_to(std::back_inserter(buffer), "//{}", mesh.normalIndices[t][k] + 1);
+            fmt::format_to(std::back_inserter(b), "//{}", mesh.normalIndices[t][k] + 1);
         }
-        buffer.push_back('\n');
-        flush(false);
-      }
-      flush(true);
+        b.push_back('\n');
+      });
     });
     return;
   }
