@@ -421,6 +421,61 @@ void writeLines(std::ostream& out, size_t count, const Line& line) {
   }
 }
 
+// OBJ's lines: %.17g, as an ostream with precision 17 writes a double, so that every double
+// reads back exactly; indices from 1.
+void objPoint(fmt::memory_buffer& b, const char* tag, const Vec3& p) {
+  fmt::format_to(std::back_inserter(b), "{} {:.17g} {:.17g} {:.17g}\n", tag, p.x(), p.y(), p.z());
+}
+void objFace(fmt::memory_buffer& b, const Tri& tri, const Tri* normals) {
+  b.push_back('f');
+  for (int k = 0; k < 3; ++k) {
+    fmt::format_to(std::back_inserter(b), " {}", tri[k] + 1);
+    if (normals) fmt::format_to(std::back_inserter(b), "//{}", (*normals)[k] + 1);
+  }
+  b.push_back('\n');
+}
+
+// A binary little-endian PLY file's header, and its values through a buffer of about 1 MB.
+std::string plyHeader(size_t vertices, bool normals, size_t faces) {
+  return fmt::format(
+      "ply\nformat binary_little_endian 1.0\ncomment written by quadtri\n"
+      "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n{}"
+      "element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
+      vertices, normals ? "property float nx\nproperty float ny\nproperty float nz\n" : "", faces);
+}
+class PlyOut {
+ public:
+  PlyOut(std::ostream& out, std::string header) : out_(out), buffer_(std::move(header)) {}
+  void vertex(const Vec3& p, const Vec3* n) {
+    for (int k = 0; k < 3; ++k) put(float(p[k]));
+    if (n)
+      for (int k = 0; k < 3; ++k) put(float((*n)[k]));
+    flush(false);
+  }
+  void face(uint32_t a, uint32_t b, uint32_t c) {
+    put(uint8_t(3));
+    put(a);
+    put(b);
+    put(c);
+    flush(false);
+  }
+  void flush(bool always) {
+    if (!always && buffer_.size() < (size_t(1) << 20)) return;
+    out_.write(buffer_.data(), std::streamsize(buffer_.size()));
+    buffer_.clear();
+  }
+
+ private:
+  template <typename T>
+  void put(const T& value) {
+    const size_t at = buffer_.size();
+    buffer_.resize(at + sizeof(value));
+    std::memcpy(buffer_.data() + at, &value, sizeof(value));  // little-endian, as on x86 and ARM
+  }
+  std::ostream& out_;
+  std::string buffer_;
+};
+
 }  // namespace
 
 void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
@@ -429,28 +484,16 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
     if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
   if (ext != ".obj" && ext != ".ply")
     fail("{}: unsupported output format '{}': expected .obj or .ply", path.string(), ext);
-  // Written as a stream through a buffer of about kFlush bytes, never built whole in memory.
-  constexpr size_t kFlush = size_t(1) << 20;
+  // Written as a stream through buffers of a few MB; the text is never whole in memory.
   if (ext == ".obj") {
     writeStreamAtomically(path, [&](std::ostream& out) {
       out << "# written by quadtri\n";
-      // %.17g, as an ostream with precision 17 writes a double: every double reads back exactly.
-      writeLines(out, mesh.positions.size(), [&](fmt::memory_buffer& b, size_t i) {
-        const Vec3& p = mesh.positions[i];
-        fmt::format_to(std::back_inserter(b), "v {:.17g} {:.17g} {:.17g}\n", p.x(), p.y(), p.z());
-      });
-      writeLines(out, mesh.normals.size(), [&](fmt::memory_buffer& b, size_t i) {
-        const Vec3& n = mesh.normals[i];
-        fmt::format_to(std::back_inserter(b), "vn {:.17g} {:.17g} {:.17g}\n", n.x(), n.y(), n.z());
-      });
+      writeLines(out, mesh.positions.size(),
+                 [&](fmt::memory_buffer& b, size_t i) { objPoint(b, "v", mesh.positions[i]); });
+      writeLines(out, mesh.normals.size(),
+                 [&](fmt::memory_buffer& b, size_t i) { objPoint(b, "vn", mesh.normals[i]); });
       writeLines(out, mesh.triangles.size(), [&](fmt::memory_buffer& b, size_t t) {
-        b.push_back('f');
-        for (int k = 0; k < 3; ++k) {
-          fmt::format_to(std::back_inserter(b), " {}", mesh.triangles[t][k] + 1);
-          if (mesh.hasNormals())
-            fmt::format_to(std::back_inserter(b), "//{}", mesh.normalIndices[t][k] + 1);
-        }
-        b.push_back('\n');
+        objFace(b, mesh.triangles[t], mesh.hasNormals() ? &mesh.normalIndices[t] : nullptr);
       });
     });
     return;
@@ -491,39 +534,89 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
     }
   }
   writeStreamAtomically(path, [&](std::ostream& out) {
-    std::string buffer = fmt::format(
-        "ply\nformat binary_little_endian 1.0\ncomment written by quadtri\n"
-        "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n{}"
-        "element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
-        cornerOf.size(),
-        mesh.hasNormals() ? "property float nx\nproperty float ny\nproperty float nz\n" : "",
-        mesh.triangles.size());
-    const auto put = [&](const auto& value) {
-      const size_t at = buffer.size();
-      buffer.resize(at + sizeof(value));
-      std::memcpy(buffer.data() + at, &value, sizeof(value));  // little-endian, as on x86 and ARM
+    PlyOut ply(out, plyHeader(cornerOf.size(), mesh.hasNormals(), mesh.triangles.size()));
+    for (const uint32_t c : cornerOf)
+      ply.vertex(mesh.positions[mesh.triangles[c / 3][c % 3]],
+                 mesh.hasNormals() ? &mesh.normals[mesh.normalIndices[c / 3][c % 3]] : nullptr);
+    const auto id = [&](size_t t, int k) {
+      return onePerPosition ? idOfPosition[mesh.triangles[t][k]] : vertexOf[3 * t + k];
     };
-    const auto flush = [&](bool always) {
-      if (!always && buffer.size() < kFlush) return;
-      out.write(buffer.data(), std::streamsize(buffer.size()));
-      buffer.clear();
-    };
-    for (const uint32_t c : cornerOf) {
-      const Vec3& p = mesh.positions[mesh.triangles[c / 3][c % 3]];
-      for (int k = 0; k < 3; ++k) put(float(p[k]));
-      if (mesh.hasNormals()) {
-        const Vec3& n = mesh.normals[mesh.normalIndices[c / 3][c % 3]];
-        for (int k = 0; k < 3; ++k) put(float(n[k]));
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) ply.face(id(t, 0), id(t, 1), id(t, 2));
+    ply.flush(true);
+  });
+}
+
+void saveMeshStream(const MeshStream& mesh, const std::filesystem::path& path) {
+  const std::string ext = mesh_check::lowerExtension(path);
+  if (ext != ".obj" && ext != ".ply")
+    fail("{}: unsupported output format '{}': expected .obj or .ply", path.string(), ext);
+  std::vector<Vec3> positions, normals;
+  std::vector<Tri> triangles;
+  size_t seen = 0;
+  const auto points = [&](size_t b) {
+    positions.clear();
+    normals.clear();
+    mesh.blockPoints(b, positions, normals);
+    for (const Vec3& p : positions)
+      if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
+    if (mesh.hasNormals && normals.size() != positions.size())
+      fail("{}: block {} has {} points and {} normals", path.string(), b, positions.size(),
+           normals.size());
+    seen += positions.size();
+  };
+  const auto faces = [&](size_t b) {
+    triangles.clear();
+    mesh.blockTriangles(b, triangles);
+    for (const Tri& tri : triangles)
+      for (const uint32_t v : tri)
+        if (v >= mesh.points)
+          fail("{}: a triangle of block {} names point {} of {}", path.string(), b, v, mesh.points);
+    seen += triangles.size();
+  };
+  const auto check = [&](size_t expected, const char* what) {
+    if (seen != expected)
+      fail("{}: the blocks hold {} {}, not the {} announced", path.string(), seen, what, expected);
+    seen = 0;
+  };
+  writeStreamAtomically(path, [&](std::ostream& out) {
+    if (ext == ".obj") {
+      out << "# written by quadtri\n";
+      for (size_t b = 0; b < mesh.blocks; ++b) {
+        points(b);
+        writeLines(out, positions.size(),
+                   [&](fmt::memory_buffer& text, size_t i) { objPoint(text, "v", positions[i]); });
       }
-      flush(false);
+      check(mesh.points, "points");
+      if (mesh.hasNormals) {
+        for (size_t b = 0; b < mesh.blocks; ++b) {
+          points(b);
+          writeLines(out, normals.size(),
+                     [&](fmt::memory_buffer& text, size_t i) { objPoint(text, "vn", normals[i]); });
+        }
+        check(mesh.points, "points");
+      }
+      for (size_t b = 0; b < mesh.blocks; ++b) {
+        faces(b);
+        writeLines(out, triangles.size(), [&](fmt::memory_buffer& text, size_t t) {
+          objFace(text, triangles[t], mesh.hasNormals ? &triangles[t] : nullptr);
+        });
+      }
+      check(mesh.triangles, "triangles");
+      return;
     }
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      put(uint8_t(3));
-      for (int k = 0; k < 3; ++k)
-        put(onePerPosition ? idOfPosition[mesh.triangles[t][k]] : vertexOf[3 * t + k]);
-      flush(false);
+    PlyOut ply(out, plyHeader(mesh.points, mesh.hasNormals, mesh.triangles));
+    for (size_t b = 0; b < mesh.blocks; ++b) {
+      points(b);
+      for (size_t i = 0; i < positions.size(); ++i)
+        ply.vertex(positions[i], mesh.hasNormals ? &normals[i] : nullptr);
     }
-    flush(true);
+    check(mesh.points, "points");
+    for (size_t b = 0; b < mesh.blocks; ++b) {
+      faces(b);
+      for (const Tri& tri : triangles) ply.face(tri[0], tri[1], tri[2]);
+    }
+    check(mesh.triangles, "triangles");
+    ply.flush(true);
   });
 }
 

@@ -193,14 +193,7 @@ size_t writeConversion(const SurfaceModel& model, const Tessellation& tessellati
   if (ext != ".obj" && ext != ".ply")
     fail("{}: unknown output extension '{}': expected .obj, .ply, .json or .qtp", path.string(),
          ext);
-  // The input triangles are written as they are, not copied first.
-  if (model.representation() == Representation::InputTriangles) {
-    saveMesh(model.mesh(), path);
-    return model.mesh().triangleCount();
-  }
-  const TriangleMesh surface = tessellate(model, tessellation);
-  saveMesh(surface, path);
-  return surface.triangleCount();
+  return saveTessellation(model, tessellation, path);
 }
 
 }  // namespace quadtri

@@ -9,6 +9,7 @@
 #include "quadtri/math/error.h"
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
+#include "quadtri/mesh/mesh_io.h"
 #include "quadtri/mesh/topology.h"
 
 namespace quadtri {
@@ -204,155 +205,217 @@ Tessellation renderTessellation(const SurfaceModel& model, const Tessellation& t
 // The most points or normals a lattice can number: a 32-bit index, below the empty slot's ~0u.
 constexpr uint64_t kMaxLatticeIndex = std::numeric_limits<uint32_t>::max() - 1;
 
-TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {
-  const TriangleMesh& mesh = model.mesh();
-  if (model.representation() == Representation::InputTriangles) return mesh;
-  const Tessellation tessellation = resolveTessellation(model, requested);
-  const PatchPattern pattern = tessellation.kind == Tessellation::Kind::ThesisGrid
-                                   ? thesisGridPattern(tessellation.level)
-                                   : latticePattern(tessellation.level);
-  const bool weld = model.sharesEdges();
-  const MeshTopology& topo = mesh.topology();
-  const int steps = pattern.edgeSteps;
-  // Where the mesh splits normals (a crease), the welded points there keep each side's own
-  // surface normal: positions are shared, normals are per corner.
-  std::vector<bool> splitVertex(weld ? mesh.positions.size() : 0, false);
-  std::vector<bool> splitEdge(weld ? topo.edges.size() : 0, false);
-  if (weld && mesh.hasNormals()) {
-    std::vector<Vec3> first(mesh.positions.size());
-    std::vector<bool> seen(mesh.positions.size(), false);
-    for (size_t t = 0; t < mesh.triangleCount(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t v = mesh.triangles[t][k];
-        const Vec3 n = mesh.cornerNormal(t, k);
-        if (!seen[v]) {
-          seen[v] = true;
-          first[v] = n;
-        } else if (n != first[v]) {
-          splitVertex[v] = true;
-        }
-      }
-    for (size_t e = 0; e < topo.edges.size(); ++e) {
-      const Edge& edge = topo.edges[e];
-      const auto [t0, k0] = edge.sides.front();
-      const bool f0 = mesh.triangles[t0][k0] == edge.a;
-      const Vec3 na = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
-      const Vec3 nb = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
-      for (auto [t, k] : edge.sides) {
-        const bool forward = mesh.triangles[t][k] == edge.a;
-        splitEdge[e] = splitEdge[e] || mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na ||
-                       mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb;
+namespace {
+
+// The walk that numbers a tessellation's points: each triangle, point by point, numbers the
+// ones no triangle before it numbered (welded, a mesh vertex or edge point is numbered once).
+// Only that numbering is sequential, and it evaluates nothing; firstPoint[t] is the first number
+// triangle t gives, so triangle t's new points are the numbers firstPoint[t] to
+// firstPoint[t + 1] - 1, and they can be evaluated, and the triangles indexed, in any order and
+// in parallel, block by block too: the result does not depend on the threads.
+class LatticeWalk {
+ public:
+  LatticeWalk(const SurfaceModel& model, const Tessellation& tessellation)
+      : model_(model),
+        mesh_(model.mesh()),
+        pattern_(tessellation.kind == Tessellation::Kind::ThesisGrid
+                     ? thesisGridPattern(tessellation.level)
+                     : latticePattern(tessellation.level)),
+        weld_(model.sharesEdges()),
+        topo_(mesh_.topology()),
+        steps_(pattern_.edgeSteps) {
+    findSplits();
+    const size_t n = mesh_.triangleCount();
+    cornerVertex_ = largeVector(weld_ ? mesh_.positions.size() : 0, ~0u);
+    // Welded edge points: per mesh edge, `steps - 1` interior points from endpoint a to b.
+    edgeVertex_ = largeVector(weld_ ? topo_.edges.size() * size_t(steps_ - 1) : 0, ~0u);
+    firstPoint_ = largeVector<uint32_t>(n + 1);
+    uint64_t next = 0;
+    for (size_t t = 0; t < n; ++t) {
+      firstPoint_[t] = uint32_t(next);
+      for (size_t i = 0; i < points(); ++i) {
+        bool split;
+        uint32_t* slot = slotOf(t, i, split);
+        if (slot && *slot != ~0u) continue;
+        if (slot) *slot = uint32_t(next);
+        if (++next > kMaxLatticeIndex)
+          fail("tessellating {} patches at {} points each: more than {} points", n, points(),
+               kMaxLatticeIndex);
       }
     }
+    firstPoint_[n] = uint32_t(next);
   }
-  TriangleMesh out;
-  const size_t n = mesh.triangleCount();
-  const size_t patternPoints = pattern.uv.size(), patternTriangles = pattern.triangles.size();
-  std::vector<uint32_t> cornerVertex = largeVector(weld ? mesh.positions.size() : 0, ~0u);
-  // Welded edge points: per mesh edge, `steps - 1` interior points from endpoint a to b.
-  std::vector<uint32_t> edgeVertex =
-      largeVector(weld ? topo.edges.size() * size_t(steps - 1) : 0, ~0u);
-  // The welded slot of point i of triangle t (its mesh vertex's or its edge point's), or null
-  // for a point of its own; `split` where the mesh splits normals there.
-  const auto slotOf = [&](size_t t, size_t i, bool& split) -> uint32_t* {
-    const PointSite& s = pattern.sites[i];
-    split = false;
-    if (weld && s.kind == PointSite::Kind::Corner) {
-      const uint32_t v = mesh.triangles[t][s.corner];
-      split = splitVertex[v];
-      return &cornerVertex[v];
-    }
-    if (weld && s.kind == PointSite::Kind::Edge) {
-      const uint32_t e = topo.edgeOf[t][s.edge];
-      const bool fromA = mesh.triangles[t][s.edge] == topo.edges[e].a;
-      const int step = fromA ? s.step : steps - s.step;
-      split = splitEdge[e];
-      return &edgeVertex[size_t(e) * size_t(steps - 1) + size_t(step - 1)];
-    }
-    return nullptr;
-  };
-  // The points are numbered as a walk over the triangles in order would number them: each
-  // triangle, point by point, numbers the ones no triangle before it numbered (welded, a mesh
-  // vertex or edge point is numbered once). Only that numbering is sequential, and it evaluates
-  // nothing; firstPoint[t] is the first number triangle t gives, so the evaluations and the
-  // triangles' indices then run in parallel, and the result does not depend on the threads.
-  std::vector<uint32_t> firstPoint = largeVector<uint32_t>(n + 1);
-  uint64_t next = 0;
-  for (size_t t = 0; t < n; ++t) {
-    firstPoint[t] = uint32_t(next);
-    for (size_t i = 0; i < patternPoints; ++i) {
-      bool split;
-      uint32_t* slot = slotOf(t, i, split);
-      if (slot && *slot != ~0u) continue;
-      if (slot) *slot = uint32_t(next);
-      if (++next > kMaxLatticeIndex)
-        fail("tessellating {} patches at {} points each: more than {} points", n, patternPoints,
-             kMaxLatticeIndex);
-    }
+
+  size_t patches() const { return mesh_.triangleCount(); }
+  size_t points() const { return pattern_.uv.size(); }  // per patch
+  size_t trianglesPerPatch() const { return pattern_.triangles.size(); }
+  size_t pointCount() const { return firstPoint_.back(); }
+  uint32_t firstPoint(size_t t) const { return firstPoint_[t]; }
+  const PatchPattern& pattern() const { return pattern_; }
+  /// Whether some welded point has another normal on each side (a crease): then the
+  /// tessellation has more normals than points.
+  bool creased() const {
+    return weld_ &&
+           (std::find(splitVertex_.begin(), splitVertex_.end(), true) != splitVertex_.end() ||
+            std::find(splitEdge_.begin(), splitEdge_.end(), true) != splitEdge_.end());
   }
-  firstPoint[n] = uint32_t(next);
-  resizeLarge(out.positions, next);
-  resizeLarge(out.normals, next);
-  resizeLarge(out.triangles, n * patternTriangles);
-  // Each triangle's point numbers, point by point: its own ones in the order it numbered them.
-  const auto localPoints = [&](size_t t, uint32_t* local, uint8_t* isNew, uint8_t* split) {
-    uint32_t own = firstPoint[t];
-    for (size_t i = 0; i < patternPoints; ++i) {
+
+  /// Triangle t's point numbers, point by point (its own ones in the order it numbered them),
+  /// whether it numbered each and whether the mesh splits normals there.
+  void localPoints(size_t t, uint32_t* local, uint8_t* isNew, uint8_t* split) const {
+    uint32_t own = firstPoint_[t];
+    for (size_t i = 0; i < points(); ++i) {
       bool splitHere;
       const uint32_t* slot = slotOf(t, i, splitHere);
       split[i] = splitHere;
       isNew[i] = !slot || *slot == own;
       local[i] = isNew[i] ? own++ : *slot;
     }
-  };
-  parallelForRange(
-      tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<uint32_t> local(patternPoints);
-        std::vector<uint8_t> isNew(patternPoints), split(patternPoints);
-        for (size_t t = range.begin(); t != range.end(); ++t) {
-          localPoints(t, local.data(), isNew.data(), split.data());
-          for (size_t i = 0; i < patternPoints; ++i) {
-            if (!isNew[i]) continue;
-            SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
-            // Corners are the mesh's own vertices, bit for bit.
-            const PointSite& s = pattern.sites[i];
-            if (s.kind == PointSite::Kind::Corner) sp.position = mesh.corner(t, s.corner);
-            out.positions[local[i]] = sp.position;
-            out.normals[local[i]] = safeNormalized(sp.normal, mesh.faceNormal(t));
-          }
-          for (size_t j = 0; j < patternTriangles; ++j) {
-            const Tri& tri = pattern.triangles[j];
-            out.triangles[t * patternTriangles + j] = {local[tri[0]], local[tri[1]], local[tri[2]]};
-          }
+  }
+
+  /// The surface point and normal of point i of triangle t; corners are the mesh's own
+  /// vertices, bit for bit.
+  std::pair<Vec3, Vec3> evaluate(size_t t, size_t i) const {
+    SurfacePoint sp = model_.evaluate(t, pattern_.uv[i].x(), pattern_.uv[i].y());
+    const PointSite& s = pattern_.sites[i];
+    if (s.kind == PointSite::Kind::Corner) sp.position = mesh_.corner(t, s.corner);
+    return {sp.position, safeNormalized(sp.normal, mesh_.faceNormal(t))};
+  }
+
+  /// Evaluates the points triangles [begin, end) number into positions and normals, point
+  /// p at p - firstPoint(begin), and writes their triangles to triangles[(t - begin) * per
+  /// patch + j] when it is not null.
+  void evaluateBlock(size_t begin, size_t end, Vec3* positions, Vec3* normals,
+                     Tri* triangles) const {
+    const uint32_t base = firstPoint_[begin];
+    parallelForRange(tbb::blocked_range<size_t>(begin, end, 256),
+                     [&](const tbb::blocked_range<size_t>& range) {
+                       std::vector<uint32_t> local(points());
+                       std::vector<uint8_t> isNew(points()), split(points());
+                       for (size_t t = range.begin(); t != range.end(); ++t) {
+                         localPoints(t, local.data(), isNew.data(), split.data());
+                         if (positions)
+                           for (size_t i = 0; i < points(); ++i) {
+                             if (!isNew[i]) continue;
+                             const auto [p, nrm] = evaluate(t, i);
+                             positions[local[i] - base] = p;
+                             normals[local[i] - base] = nrm;
+                           }
+                         if (triangles)
+                           for (size_t j = 0; j < trianglesPerPatch(); ++j) {
+                             const Tri& tri = pattern_.triangles[j];
+                             triangles[(t - begin) * trianglesPerPatch() + j] = {
+                                 local[tri[0]], local[tri[1]], local[tri[2]]};
+                           }
+                       }
+                     });
+  }
+
+  /// Triangle t's crease normals: where it reuses a point at a split vertex or edge, its own
+  /// surface normal there, when it differs from `normals`' one for that point.
+  void creaseNormals(size_t t, const std::vector<Vec3>& normals,
+                     std::vector<std::pair<size_t, Vec3>>& found) const {
+    found.clear();
+    std::vector<uint32_t> local(points());
+    std::vector<uint8_t> isNew(points()), split(points());
+    localPoints(t, local.data(), isNew.data(), split.data());
+    for (size_t i = 0; i < points(); ++i) {
+      if (isNew[i] || !split[i]) continue;
+      const Vec3 normal = evaluate(t, i).second;
+      if (normal != normals[local[i]]) found.emplace_back(i, normal);
+    }
+  }
+
+ private:
+  // Where the mesh splits normals (a crease), the welded points there keep each side's own
+  // surface normal: positions are shared, normals are per corner.
+  void findSplits() {
+    splitVertex_.assign(weld_ ? mesh_.positions.size() : 0, false);
+    splitEdge_.assign(weld_ ? topo_.edges.size() : 0, false);
+    if (!weld_ || !mesh_.hasNormals()) return;
+    std::vector<Vec3> first(mesh_.positions.size());
+    std::vector<bool> seen(mesh_.positions.size(), false);
+    for (size_t t = 0; t < mesh_.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = mesh_.triangles[t][k];
+        const Vec3 n = mesh_.cornerNormal(t, k);
+        if (!seen[v]) {
+          seen[v] = true;
+          first[v] = n;
+        } else if (n != first[v]) {
+          splitVertex_[v] = true;
         }
-      });
+      }
+    for (size_t e = 0; e < topo_.edges.size(); ++e) {
+      const Edge& edge = topo_.edges[e];
+      const auto [t0, k0] = edge.sides.front();
+      const bool f0 = mesh_.triangles[t0][k0] == edge.a;
+      const Vec3 na = mesh_.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
+      const Vec3 nb = mesh_.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
+      for (auto [t, k] : edge.sides) {
+        const bool forward = mesh_.triangles[t][k] == edge.a;
+        splitEdge_[e] = splitEdge_[e] || mesh_.cornerNormal(t, forward ? k : (k + 1) % 3) != na ||
+                        mesh_.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb;
+      }
+    }
+  }
+
+  // The welded slot of point i of triangle t (its mesh vertex's or its edge point's), or null
+  // for a point of its own; `split` where the mesh splits normals there.
+  uint32_t* slotOf(size_t t, size_t i, bool& split) const {
+    const PointSite& s = pattern_.sites[i];
+    split = false;
+    if (weld_ && s.kind == PointSite::Kind::Corner) {
+      const uint32_t v = mesh_.triangles[t][s.corner];
+      split = splitVertex_[v];
+      return &cornerVertex_[v];
+    }
+    if (weld_ && s.kind == PointSite::Kind::Edge) {
+      const uint32_t e = topo_.edgeOf[t][s.edge];
+      const bool fromA = mesh_.triangles[t][s.edge] == topo_.edges[e].a;
+      const int step = fromA ? s.step : steps_ - s.step;
+      split = splitEdge_[e];
+      return &edgeVertex_[size_t(e) * size_t(steps_ - 1) + size_t(step - 1)];
+    }
+    return nullptr;
+  }
+
+  const SurfaceModel& model_;
+  const TriangleMesh& mesh_;
+  const PatchPattern pattern_;
+  const bool weld_;
+  const MeshTopology& topo_;
+  const int steps_;
+  std::vector<bool> splitVertex_, splitEdge_;
+  mutable std::vector<uint32_t> cornerVertex_, edgeVertex_;  // filled by the numbering only
+  std::vector<uint32_t> firstPoint_;
+};
+
+}  // namespace
+
+namespace {
+
+// The tessellation that walk numbers, whole.
+TriangleMesh tessellateWalk(const LatticeWalk& walk) {
+  const size_t n = walk.patches(), perPatch = walk.trianglesPerPatch();
+  TriangleMesh out;
+  resizeLarge(out.positions, walk.pointCount());
+  resizeLarge(out.normals, walk.pointCount());
+  resizeLarge(out.triangles, n * perPatch);
+  walk.evaluateBlock(0, n, out.positions.data(), out.normals.data(), out.triangles.data());
   resizeLarge(out.normalIndices, out.triangles.size());
   out.normalIndices = out.triangles;
-  if (!weld || (std::find(splitVertex.begin(), splitVertex.end(), true) == splitVertex.end() &&
-                std::find(splitEdge.begin(), splitEdge.end(), true) == splitEdge.end()))
-    return out;
+  if (!walk.creased()) return out;
   // Crease normals: where a triangle reuses a point at a split vertex or edge, its own surface
   // normal there, when it differs from the one the point was numbered with, becomes an extra
-  // normal after the points' ones, numbered in the order of the walk above. Counted, then
-  // written (evaluating those few points twice).
-  const auto creaseNormals = [&](size_t t, std::vector<std::pair<size_t, Vec3>>& found) {
-    found.clear();
-    std::vector<uint32_t> local(patternPoints);
-    std::vector<uint8_t> isNew(patternPoints), split(patternPoints);
-    localPoints(t, local.data(), isNew.data(), split.data());
-    for (size_t i = 0; i < patternPoints; ++i) {
-      if (isNew[i] || !split[i]) continue;
-      const SurfacePoint sp = model.evaluate(t, pattern.uv[i].x(), pattern.uv[i].y());
-      const Vec3 normal = safeNormalized(sp.normal, mesh.faceNormal(t));
-      if (normal != out.normals[local[i]]) found.emplace_back(i, normal);
-    }
-  };
+  // normal after the points' ones, numbered in the order of the walk. Counted, then written
+  // (evaluating those few points twice).
   std::vector<size_t> extraBefore = largeVector<size_t>(n + 1);
   parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
                    [&](const tbb::blocked_range<size_t>& range) {
                      std::vector<std::pair<size_t, Vec3>> found;
                      for (size_t t = range.begin(); t != range.end(); ++t) {
-                       creaseNormals(t, found);
+                       walk.creaseNormals(t, out.normals, found);
                        extraBefore[t + 1] = found.size();
                      }
                    });
@@ -362,24 +425,71 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested
   if (base + extraBefore[n] > kMaxLatticeIndex)
     fail("tessellating {} patches: more than {} normals", n, kMaxLatticeIndex);
   out.normals.resize(base + extraBefore[n]);
+  const PatchPattern& pattern = walk.pattern();
   parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
                    [&](const tbb::blocked_range<size_t>& range) {
                      std::vector<std::pair<size_t, Vec3>> found;
                      for (size_t t = range.begin(); t != range.end(); ++t) {
                        if (extraBefore[t] == extraBefore[t + 1]) continue;
-                       creaseNormals(t, found);
+                       walk.creaseNormals(t, out.normals, found);
                        for (size_t f = 0; f < found.size(); ++f) {
                          const auto [i, normal] = found[f];
                          const uint32_t index = uint32_t(base + extraBefore[t] + f);
                          out.normals[index] = normal;
-                         for (size_t j = 0; j < patternTriangles; ++j)
+                         for (size_t j = 0; j < perPatch; ++j)
                            for (int c = 0; c < 3; ++c)
                              if (size_t(pattern.triangles[j][c]) == i)
-                               out.normalIndices[t * patternTriangles + j][c] = index;
+                               out.normalIndices[t * perPatch + j][c] = index;
                        }
                      }
                    });
   return out;
+}
+
+}  // namespace
+
+TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {
+  if (model.representation() == Representation::InputTriangles) return model.mesh();
+  return tessellateWalk(LatticeWalk(model, resolveTessellation(model, requested)));
+}
+
+size_t saveTessellation(const SurfaceModel& model, const Tessellation& requested,
+                        const std::filesystem::path& path, size_t blockPoints) {
+  // The input triangles are written as they are, not copied first.
+  if (model.representation() == Representation::InputTriangles) {
+    saveMesh(model.mesh(), path);
+    return model.mesh().triangleCount();
+  }
+  const LatticeWalk walk(model, resolveTessellation(model, requested));
+  if (walk.creased()) {
+    const TriangleMesh surface = tessellateWalk(walk);
+    saveMesh(surface, path);
+    return surface.triangleCount();
+  }
+  // A block's points are the numbers its patches give.
+  const size_t n = walk.patches(), perPatch = walk.trianglesPerPatch();
+  const size_t blockPatches = std::max<size_t>(1, blockPoints / walk.points());
+  const auto range = [&](size_t b) {
+    return std::pair(b * blockPatches, std::min(n, (b + 1) * blockPatches));
+  };
+  MeshStream stream;
+  stream.points = walk.pointCount();
+  stream.triangles = n * perPatch;
+  stream.blocks = (n + blockPatches - 1) / blockPatches;
+  stream.blockPoints = [&](size_t b, std::vector<Vec3>& positions, std::vector<Vec3>& normals) {
+    const auto [begin, end] = range(b);
+    const size_t count = walk.firstPoint(end) - walk.firstPoint(begin);
+    positions.resize(count);
+    normals.resize(count);
+    walk.evaluateBlock(begin, end, positions.data(), normals.data(), nullptr);
+  };
+  stream.blockTriangles = [&](size_t b, std::vector<Tri>& triangles) {
+    const auto [begin, end] = range(b);
+    triangles.resize((end - begin) * perPatch);
+    walk.evaluateBlock(begin, end, nullptr, nullptr, triangles.data());
+  };
+  saveMeshStream(stream, path);
+  return stream.triangles;
 }
 
 }  // namespace quadtri

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <vector>
 
 #include "quadtri/mesh/mesh_io_check.h"
 #include "quadtri/mesh/normals.h"
@@ -22,6 +24,26 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
 /// Writes OBJ or PLY (binary little-endian) by extension, with normals when the mesh has them.
 /// The file appears atomically.
 void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path);
+
+/// A mesh that saveMeshStream writes block by block, never whole: one normal per point
+/// (normal i is point i's, as the triangles index both) or none. The blocks' points, in
+/// block order, are points 0 to `points` - 1; their triangles, in block order, the mesh's.
+struct MeshStream {
+  size_t points = 0, triangles = 0, blocks = 0;
+  bool hasNormals = true;
+  /// Appends block b's points to positions and (with normals) normals.
+  std::function<void(size_t b, std::vector<Vec3>& positions, std::vector<Vec3>& normals)>
+      blockPoints;
+  /// Appends block b's triangles.
+  std::function<void(size_t b, std::vector<Tri>& triangles)> blockTriangles;
+};
+
+/// Writes such a mesh as saveMesh writes it, a block at a time: an OBJ file the bytes saveMesh
+/// writes for the whole mesh; a PLY file with its vertices in point order (saveMesh numbers
+/// them by first use). OBJ's points are asked for twice, for their positions and then their
+/// normals. The file appears atomically; nothing is written when a block has a non-finite
+/// position or the blocks do not hold the counts.
+void saveMeshStream(const MeshStream& mesh, const std::filesystem::path& path);
 
 }  // namespace quadtri
 

@@ -1,6 +1,7 @@
 // Triangle meshes from patches: the render geometry of the tessellated models.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "quadtri/mesh/triangle_mesh.h"
@@ -59,5 +60,16 @@ Tessellation renderTessellation(const SurfaceModel& model, const Tessellation& t
 /// vertex) each patch keeps its own surface normal there (per-corner normals), so a crease
 /// stays sharp in shading. InputTriangles models return their mesh unchanged.
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellation);
+
+/// Writes tessellate(model, tessellation) to an OBJ or PLY file (saveMesh's formats) and
+/// returns its triangle count. Where every point has one normal (no crease splits one), the
+/// surface is never whole in memory: its points are numbered first (a few bytes per patch and
+/// per welded point), then evaluated and written a block of patches at a time, the points'
+/// positions and normals (OBJ evaluates them twice: its normals follow all its positions), then
+/// their triangles (saveMeshStream). The OBJ bytes are saveMesh's; a PLY file lists its
+/// vertices in point order. With creases the surface is built whole, then written. A block
+/// holds about `blockPoints` points (at least one patch).
+size_t saveTessellation(const SurfaceModel& model, const Tessellation& tessellation,
+                        const std::filesystem::path& path, size_t blockPoints = size_t(1) << 20);
 
 }  // namespace quadtri
