@@ -190,6 +190,20 @@ the model shares its edges, with the surface normals; flat, shading and shading-
 input triangles (split normals as load_mesh treats them).
 )doc")
       .def(
+          "save",
+          [](const PyModel& p, py::handle path, py::handle level) {
+            const Tessellation t = level.is_none() ? p.tessellation : tessellationOf(level);
+            const std::string file = pathOf(path);
+            LibraryCall call;
+            return writeConversion(*p.model, t, file);
+          },
+          py::arg("path"), py::arg("level") = py::none(), R"doc(
+Writes what `quadtri convert MESH --model NAME -o PATH` writes, by PATH's extension: .obj or .ply
+the surface (tessellate's triangles, streamed a block of patches at a time where each point has one
+normal), .json the patch JSON, .qtp the binary patch table. Returns the triangles written to an
+OBJ/PLY file (0 otherwise). The file appears whole or not at all.
+)doc")
+      .def(
           "patch_json", [](const PyModel& p) { return toPython(conversion(p)); },
           "What `quadtri convert MESH --model NAME -o OUT.json` writes, as a dict (README, \"Patch "
           "JSON\").")

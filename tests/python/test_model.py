@@ -101,6 +101,25 @@ def test_tessellate_matches_convert(cli, tmp_path, model):
     np.testing.assert_allclose(TN[TF], N[NI], rtol=0, atol=1e-7)
 
 
+@pytest.mark.parametrize("model", ["pn", "quadric-g1", "quadric-edges-eq42", "shading"])
+def test_save_writes_what_convert_writes(cli, tmp_path, model):
+    cli("convert", "torus", "--model", model, "--tessellation", 2, "-o", tmp_path / "cli.obj")
+    m = quadtri.Model(model, *quadtri.shape("torus"))
+    written = m.save(tmp_path / "py.obj", level=2)
+    assert (tmp_path / "py.obj").read_bytes() == (tmp_path / "cli.obj").read_bytes()
+    TV, TF, TN = m.tessellate(2)
+    assert written == len(TF)
+    # PLY, streamed: its vertices are the tessellation's points, in order (as floats).
+    assert m.save(tmp_path / "py.ply", level=2) == len(TF)
+    # eq42 does not weld: the loader welds its patches' equal corners, keeping their normals.
+    V, F, N, NI = quadtri.load_mesh(tmp_path / "py.ply", split=True)
+    np.testing.assert_allclose(TV[TF], V[F], rtol=0, atol=1e-6)
+    np.testing.assert_allclose(TN[TF], N[NI], rtol=0, atol=1e-6)
+    with pytest.raises(quadtri.Error, match=r"x\.stl"):
+        m.save(tmp_path / "x.stl")
+    assert not (tmp_path / "x.stl").exists()
+
+
 @pytest.mark.parametrize("subdivisions, level", [(0, 8), (4, 2), (6, 1)])
 def test_auto_tessellation_picks_the_level_convert_picks(cli, tmp_path, subdivisions, level):
     out = tmp_path / "t.ply"
