@@ -195,18 +195,24 @@ std::string_view expectedValue(const PlyType& t) {
   return t.isSigned ? "an integer" : "an unsigned integer";
 }
 
-// Whether Assimp reads the whole of a float word: it reads the integer part as a 64-bit
-// integer and, where that overflows, stops without consuming the word, so every value after it
-// on the line reads the same digits again, a list count included (fuzz_ply: a 106-digit
-// coordinate made a list count of billions). 19 digits never overflow; more may.
+// Whether Assimp reads the whole of a float word: it reads the integer part, and the exponent,
+// as 64-bit integers and, where one overflows, stops without consuming the word, so every value
+// after it on the line reads the same digits again, a list count included (fuzz_ply: a
+// 106-digit coordinate made a list count of billions; an exponent of 23 digits gave a uchar
+// list count of 2·10^9). 19 digits never overflow; more may. (The fraction's digits past the
+// 15th are skipped.)
 bool assimpReadsFloat(std::string_view word) {
-  size_t i = word.find_first_not_of("+-");
-  if (i == std::string_view::npos) return true;
-  while (i < word.size() && word[i] == '0') ++i;
-  size_t digits = 0;
-  while (i + digits < word.size() && std::isdigit(static_cast<unsigned char>(word[i + digits])))
-    ++digits;
-  return digits <= 19;
+  const auto fits = [&](size_t i) {
+    while (i < word.size() && word[i] == '0') ++i;
+    size_t digits = 0;
+    while (i + digits < word.size() && std::isdigit(static_cast<unsigned char>(word[i + digits])))
+      ++digits;
+    return digits <= 19;
+  };
+  const size_t start = word.find_first_not_of("+-");
+  if (start == std::string_view::npos) return true;
+  const size_t e = word.find_first_of("eE");
+  return fits(start) && (e == std::string_view::npos || fits(word.find_first_not_of("+-", e + 1)));
 }
 
 // ASCII: one element per line, each line holding a value per scalar property and, per list,
@@ -237,12 +243,15 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
         w = words(line);
       } while (w.empty());
       size_t k = 0;
+      // An element without properties is left out of Assimp's text: it would read its entries'
+      // lines as blank ones, of which it skips some (a later coordinate became a list count).
+      std::string* const text = e.properties.empty() ? nullptr : out;
       const auto emit = [&](std::string_view word) {
-        if (!out) return;
-        if (!out->empty() && out->back() != '\n') out->push_back(' ');
+        if (!text) return;
+        if (!text->empty() && text->back() != '\n') text->push_back(' ');
         // Assimp reads an unsigned integer's digits only (asciiValue allows no '-' there).
         if (!word.empty() && word[0] == '+') word.remove_prefix(1);
-        out->append(word);
+        text->append(word);
       };
       for (const Property& p : e.properties) {
         if (k >= w.size()) {
@@ -253,8 +262,8 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
         const auto checkFloat = [&](std::string_view word) {
           if (!p.value->isInteger && !assimpReadsFloat(word))
             fail(
-                "{}:{}: element '{}' {}: property '{}' is '{}', a number whose integer part has "
-                "more than 19 digits, which Assimp cannot read; expected it with an exponent",
+                "{}:{}: element '{}' {}: property '{}' is '{}', a number whose integer part or "
+                "exponent has more than 19 digits, which Assimp cannot read; expected at most 19",
                 name, lineNo, e.name, i, p.name, word.substr(0, 40));
         };
         if (!p.count) {
@@ -282,7 +291,7 @@ void checkAsciiBody(std::istream& in, long lineNo, const std::vector<Element>& e
         }
         k += 1 + size_t(*n);
       }
-      if (out) out->push_back('\n');
+      if (text) text->push_back('\n');
     }
 }
 
@@ -453,6 +462,7 @@ MeshFileInfo inspectPly(const std::filesystem::path& path, std::string_view byte
     text->reserve(bytes.size() + 64);
     text->append("ply\nformat ascii 1.0\n");
     for (const Element& e : elements) {
+      if (e.properties.empty()) continue;  // and its lines (checkAsciiBody)
       fmt::format_to(std::back_inserter(*text), "element {} {}\n", e.name, e.count);
       for (const Property& p : e.properties)
         if (p.count)

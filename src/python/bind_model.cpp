@@ -2,6 +2,7 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "arrays.h"
@@ -192,10 +193,16 @@ input triangles (split normals as load_mesh treats them).
       .def(
           "save",
           [](const PyModel& p, py::handle path, py::handle level) {
-            const Tessellation t = level.is_none() ? p.tessellation : tessellationOf(level);
+            const Tessellation requested = level.is_none() ? p.tessellation : tessellationOf(level);
             const std::string file = pathOf(path);
             LibraryCall call;
-            return writeConversion(*p.model, t, file);
+            // As convert: a surface at the level it resolves to, patches naming what renders.
+            const std::string ext = std::filesystem::path(file).extension().string();
+            const bool patches = ext == ".json" || ext == ".qtp";
+            return writeConversion(*p.model,
+                                   patches ? renderTessellation(*p.model, requested)
+                                           : resolveTessellation(*p.model, requested),
+                                   file);
           },
           py::arg("path"), py::arg("level") = py::none(), R"doc(
 Writes what `quadtri convert MESH --model NAME -o PATH` writes, by PATH's extension: .obj or .ply

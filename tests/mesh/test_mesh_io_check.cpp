@@ -321,6 +321,35 @@ TEST(MeshIoCheck, AsciiPlyReachesAssimpOneCompleteElementPerLine) {
                  }),
                  {"nan.ply:6: element 'vertex' 0: property 'x' is 'nan(7)', expected a number"});
   EXPECT_EQ(loadMesh(writeFile("plus.ply", sign + "+5 3 0 +1 2\n")).triangleCount(), 1u);
+  // Assimp reads a float's exponent as a 64-bit integer and stops at one that overflows, so its
+  // digits would be read again as the list count after it (2·10^9 values).
+  const std::string exponent =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty float q\n"
+      "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  expectContains(
+      refusal([&] {
+        loadMesh(writeFile("exponent.ply", exponent + "1e36893488149419103232 3 0 1 2\n"));
+      }),
+      {"exponent.ply:14: element 'face' 0: property 'q' is '1e36893488149419103232'",
+       "exponent has more than 19 digits"});
+  EXPECT_EQ(loadMesh(writeFile("exponent-ok.ply", exponent + "1e-0000000000000000000000000000038 3 "
+                                                             "0 1 2\n"))
+                .triangleCount(),
+            1u);
+  // Elements without properties take a line per entry here and are left out of Assimp's text,
+  // which would have read their lines as blank ones, skipped some and read every later line one
+  // element late (a coordinate as a list count of 2·10^9).
+  for (const char* element : {"foo", "material"}) {
+    const std::string empty = std::string("ply\nformat ascii 1.0\nelement ") + element +
+                              " 2\nelement vertex 4\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 2\n"
+                              "property list uchar int vertex_indices\nend_header\na\nb\n0 0 0\n"
+                              "1 0 0\n0 1 0\n2 0 1\n3 0 1 2\n3 0 2 3\n";
+    const TriangleMesh m = loadMesh(writeFile("empty-element.ply", empty));
+    EXPECT_EQ(m.triangleCount(), 2u) << element;
+    EXPECT_EQ(m.positions[m.triangles[1][2]], Vec3(2, 0, 1)) << element;
+  }
 }
 
 TEST(MeshIoCheck, BinaryStlCountsOverTheFileSizeAreRefused) {

@@ -115,6 +115,10 @@ def test_save_writes_what_convert_writes(cli, tmp_path, model):
     V, F, N, NI = quadtri.load_mesh(tmp_path / "py.ply", split=True)
     np.testing.assert_allclose(TV[TF], V[F], rtol=0, atol=1e-6)
     np.testing.assert_allclose(TN[TF], N[NI], rtol=0, atol=1e-6)
+    # Patches name the tessellation convert names (an automatic one, the level it resolves to).
+    cli("convert", "torus", "--model", model, "--tessellation", "auto", "-o", tmp_path / "cli.json")
+    assert m.save(tmp_path / "py.json", level="auto") == 0
+    assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
     with pytest.raises(quadtri.Error, match=r"x\.stl"):
         m.save(tmp_path / "x.stl")
     assert not (tmp_path / "x.stl").exists()
