@@ -22,6 +22,10 @@ struct ModelCost {
   /// as defaultSubPatchBudget gives its pieces. Beside it, `traced` is what does not grow with
   /// the regions.
   double perRegion = 0;
+  /// ConvertMeshStreamed: the model itself beside the lattice walk and one block of the
+  /// streamed surface (saveTessellation), measured as the slope of `convert icosphere:6|7 -o
+  /// x.ply` at level 8 less `flat`'s and the walk's, and charged about 15% above that.
+  double streamed = 0;
 };
 
 /// The cost of the model named `name`; nullptr for a name that is no model.

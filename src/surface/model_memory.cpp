@@ -6,6 +6,7 @@
 
 #include "model_cost.h"
 #include "quadtri/surface/bezier_intersect.h"
+#include "quadtri/surface/convert_output.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri {
@@ -14,6 +15,34 @@ namespace {
 // The input triangles written to OBJ/PLY, and a lattice triangle traced by Embree (its share
 // of vertices, the triangle, the BVH).
 constexpr double kInputTriangleMesh = 150, kLatticeTriangleRender = 170;
+
+// Steps along each edge of a patch's points (an Adaptive tessellation's lowest level, 1).
+int edgeSteps(const Tessellation& t) {
+  if (t.kind == Tessellation::Kind::Adaptive) return 1;
+  return t.kind == Tessellation::Kind::ThesisGrid ? t.level - 1 : t.level;
+}
+
+// The lattice walk of a streamed surface, per input triangle: its first point's number, its
+// share of the slots of the mesh's vertices (half a vertex) and of its edges' inner points
+// (one and a half edges).
+double walkBytes(const Tessellation& t) {
+  return 4.0 + 2.0 + 6.0 * double(edgeSteps(t) - 1);
+}
+
+// A streamed surface's block: per patch, its points (position and normal, in double) and
+// triangles; at most kTessellationBlockPoints points with their triangles (about two per
+// point), and the text of a window of OBJ lines (8 × 16,384 lines of at most about 80 bytes).
+// An Adaptive tessellation's block is charged at its highest level: the cap bounds it anyway.
+CappedModelBytes streamBlockBytes(const Tessellation& t) {
+  const Tessellation highest = t.kind == Tessellation::Kind::Adaptive
+                                   ? Tessellation{Tessellation::Kind::Lattice, t.level}
+                                   : t;
+  const double side = double(edgeSteps(highest) + 1);
+  const double points =
+      t.kind == Tessellation::Kind::ThesisGrid ? side * side : side * (side + 1.0) / 2.0;
+  const double block = double(kTessellationBlockPoints) * (48.0 + 2.0 * 12.0) + 8 * 16384 * 80.0;
+  return {uint64_t(points * 48.0 + double(highest.trianglesPerPatch()) * 12.0), uint64_t(block)};
+}
 
 }  // namespace
 
@@ -33,23 +62,29 @@ uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tesse
       return uint64_t(cost->json);
     case ModelUse::ConvertMesh:
       return uint64_t(cost->inputTriangles ? kInputTriangleMesh : lattice * cost->latticeMesh);
+    case ModelUse::ConvertMeshStreamed:
+      return uint64_t(cost->inputTriangles ? kInputTriangleMesh
+                                           : cost->streamed + walkBytes(tessellation));
     case ModelUse::Render:
       return uint64_t(cost->traced > 0 ? cost->traced : lattice * kLatticeTriangleRender);
   }
   return 0;
 }
 
-CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use) {
+CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use,
+                                  const Tessellation& tessellation) {
   const ModelCost* cost = modelCost(model);
   if (!cost) {
     CappedModelBytes most;
     for (const std::string& name : modelNames()) {
-      const CappedModelBytes c = modelCappedBytes(name, use);
+      const CappedModelBytes c = modelCappedBytes(name, use, tessellation);
       most.perTriangle = std::max(most.perTriangle, c.perTriangle);
       most.cap = std::max(most.cap, c.cap);
     }
     return most;
   }
+  if (use == ModelUse::ConvertMeshStreamed && !cost->inputTriangles)
+    return streamBlockBytes(tessellation);
   if (use != ModelUse::Render || cost->perRegion <= 0) return {};
   // defaultSubPatchBudget's share per piece and its cap, on G1Model's three pieces per triangle.
   return {uint64_t(double(3 * kSubPatchesPerPiece) * cost->perRegion),
@@ -70,10 +105,24 @@ void chargeResolvedTessellation(MemoryBudget& budget, std::string_view model,
       fmt::format("tessellating its {} triangles at level {} (auto)", triangles, resolved.level));
 }
 
+void chargeWholeTessellation(MemoryBudget& budget, std::string_view model,
+                             const Tessellation& resolved, uint64_t triangles,
+                             const std::string& name) {
+  // The surface whole (the lattice cost, which leaves the model out), on top of the streamed
+  // charge, which has the model (and a block this path does not build).
+  const uint64_t needed = modelBytesPerTriangle(model, resolved, ModelUse::ConvertMesh);
+  MemoryBudget extra;
+  extra.bytesPerTriangle = needed;
+  chargeMemory(budget, modelBytes(extra, triangles), name,
+               fmt::format("building its surface whole (a crease splits its normals; {} bytes "
+                           "per triangle) at tessellation {}",
+                           needed, tessellationName(resolved)));
+}
+
 void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellation& tessellation,
                    ModelUse use, bool dearest) {
   const uint64_t perTriangle = modelBytesPerTriangle(model, tessellation, use);
-  const CappedModelBytes capped = modelCappedBytes(model, use);
+  const CappedModelBytes capped = modelCappedBytes(model, use, tessellation);
   if (!dearest) budget.bytesPerTriangle = budget.cappedBytesPerTriangle = budget.cappedBytes = 0;
   budget.bytesPerTriangle = std::max(budget.bytesPerTriangle, perTriangle);
   budget.cappedBytesPerTriangle = std::max(budget.cappedBytesPerTriangle, capped.perTriangle);

@@ -207,6 +207,54 @@ constexpr uint64_t kMaxLatticeIndex = std::numeric_limits<uint32_t>::max() - 1;
 
 namespace {
 
+// Where the mesh splits normals (a crease), the welded points there keep each side's own
+// surface normal: positions are shared, normals are per corner. Empty when the model welds
+// nothing.
+struct Splits {
+  std::vector<bool> vertex, edge;
+  bool any() const {
+    return std::find(vertex.begin(), vertex.end(), true) != vertex.end() ||
+           std::find(edge.begin(), edge.end(), true) != edge.end();
+  }
+};
+
+Splits findSplits(const SurfaceModel& model) {
+  Splits splits;
+  const TriangleMesh& mesh = model.mesh();
+  if (!model.sharesEdges() || model.representation() == Representation::InputTriangles)
+    return splits;
+  const MeshTopology& topo = mesh.topology();
+  splits.vertex.assign(mesh.positions.size(), false);
+  splits.edge.assign(topo.edges.size(), false);
+  if (!mesh.hasNormals()) return splits;
+  std::vector<Vec3> first(mesh.positions.size());
+  std::vector<bool> seen(mesh.positions.size(), false);
+  for (size_t t = 0; t < mesh.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.triangles[t][k];
+      const Vec3 n = mesh.cornerNormal(t, k);
+      if (!seen[v]) {
+        seen[v] = true;
+        first[v] = n;
+      } else if (n != first[v]) {
+        splits.vertex[v] = true;
+      }
+    }
+  for (size_t e = 0; e < topo.edges.size(); ++e) {
+    const Edge& edge = topo.edges[e];
+    const auto [t0, k0] = edge.sides.front();
+    const bool f0 = mesh.triangles[t0][k0] == edge.a;
+    const Vec3 na = mesh.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
+    const Vec3 nb = mesh.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
+    for (auto [t, k] : edge.sides) {
+      const bool forward = mesh.triangles[t][k] == edge.a;
+      splits.edge[e] = splits.edge[e] || mesh.cornerNormal(t, forward ? k : (k + 1) % 3) != na ||
+                       mesh.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb;
+    }
+  }
+  return splits;
+}
+
 // The walk that numbers a tessellation's points: each triangle, point by point, numbers the
 // ones no triangle before it numbered (welded, a mesh vertex or edge point is numbered once).
 // Only that numbering is sequential, and it evaluates nothing; firstPoint[t] is the first number
@@ -223,8 +271,8 @@ class LatticeWalk {
                      : latticePattern(tessellation.level)),
         weld_(model.sharesEdges()),
         topo_(mesh_.topology()),
-        steps_(pattern_.edgeSteps) {
-    findSplits();
+        steps_(pattern_.edgeSteps),
+        splits_(findSplits(model)) {
     const size_t n = mesh_.triangleCount();
     cornerVertex_ = largeVector(weld_ ? mesh_.positions.size() : 0, ~0u);
     // Welded edge points: per mesh edge, `steps - 1` interior points from endpoint a to b.
@@ -254,11 +302,7 @@ class LatticeWalk {
   const PatchPattern& pattern() const { return pattern_; }
   /// Whether some welded point has another normal on each side (a crease): then the
   /// tessellation has more normals than points.
-  bool creased() const {
-    return weld_ &&
-           (std::find(splitVertex_.begin(), splitVertex_.end(), true) != splitVertex_.end() ||
-            std::find(splitEdge_.begin(), splitEdge_.end(), true) != splitEdge_.end());
-  }
+  bool creased() const { return splits_.any(); }
 
   /// Triangle t's point numbers, point by point (its own ones in the order it numbered them),
   /// whether it numbered each and whether the mesh splits normals there.
@@ -327,39 +371,6 @@ class LatticeWalk {
   }
 
  private:
-  // Where the mesh splits normals (a crease), the welded points there keep each side's own
-  // surface normal: positions are shared, normals are per corner.
-  void findSplits() {
-    splitVertex_.assign(weld_ ? mesh_.positions.size() : 0, false);
-    splitEdge_.assign(weld_ ? topo_.edges.size() : 0, false);
-    if (!weld_ || !mesh_.hasNormals()) return;
-    std::vector<Vec3> first(mesh_.positions.size());
-    std::vector<bool> seen(mesh_.positions.size(), false);
-    for (size_t t = 0; t < mesh_.triangleCount(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t v = mesh_.triangles[t][k];
-        const Vec3 n = mesh_.cornerNormal(t, k);
-        if (!seen[v]) {
-          seen[v] = true;
-          first[v] = n;
-        } else if (n != first[v]) {
-          splitVertex_[v] = true;
-        }
-      }
-    for (size_t e = 0; e < topo_.edges.size(); ++e) {
-      const Edge& edge = topo_.edges[e];
-      const auto [t0, k0] = edge.sides.front();
-      const bool f0 = mesh_.triangles[t0][k0] == edge.a;
-      const Vec3 na = mesh_.cornerNormal(t0, f0 ? k0 : (k0 + 1) % 3);
-      const Vec3 nb = mesh_.cornerNormal(t0, f0 ? (k0 + 1) % 3 : k0);
-      for (auto [t, k] : edge.sides) {
-        const bool forward = mesh_.triangles[t][k] == edge.a;
-        splitEdge_[e] = splitEdge_[e] || mesh_.cornerNormal(t, forward ? k : (k + 1) % 3) != na ||
-                        mesh_.cornerNormal(t, forward ? (k + 1) % 3 : k) != nb;
-      }
-    }
-  }
-
   // The welded slot of point i of triangle t (its mesh vertex's or its edge point's), or null
   // for a point of its own; `split` where the mesh splits normals there.
   uint32_t* slotOf(size_t t, size_t i, bool& split) const {
@@ -367,14 +378,14 @@ class LatticeWalk {
     split = false;
     if (weld_ && s.kind == PointSite::Kind::Corner) {
       const uint32_t v = mesh_.triangles[t][s.corner];
-      split = splitVertex_[v];
+      split = splits_.vertex[v];
       return &cornerVertex_[v];
     }
     if (weld_ && s.kind == PointSite::Kind::Edge) {
       const uint32_t e = topo_.edgeOf[t][s.edge];
       const bool fromA = mesh_.triangles[t][s.edge] == topo_.edges[e].a;
       const int step = fromA ? s.step : steps_ - s.step;
-      split = splitEdge_[e];
+      split = splits_.edge[e];
       return &edgeVertex_[size_t(e) * size_t(steps_ - 1) + size_t(step - 1)];
     }
     return nullptr;
@@ -386,7 +397,7 @@ class LatticeWalk {
   const bool weld_;
   const MeshTopology& topo_;
   const int steps_;
-  std::vector<bool> splitVertex_, splitEdge_;
+  const Splits splits_;
   mutable std::vector<uint32_t> cornerVertex_, edgeVertex_;  // filled by the numbering only
   std::vector<uint32_t> firstPoint_;
 };
@@ -448,6 +459,10 @@ TriangleMesh tessellateWalk(const LatticeWalk& walk) {
 
 }  // namespace
 
+bool tessellationBuiltWhole(const SurfaceModel& model) {
+  return findSplits(model).any();
+}
+
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {
   if (model.representation() == Representation::InputTriangles) return model.mesh();
   return tessellateWalk(LatticeWalk(model, resolveTessellation(model, requested)));
@@ -469,6 +484,7 @@ size_t saveTessellation(const SurfaceModel& model, const Tessellation& requested
   // A block's points are the numbers its patches give.
   const size_t n = walk.patches(), perPatch = walk.trianglesPerPatch();
   const size_t blockPatches = std::max<size_t>(1, blockPoints / walk.points());
+  static_assert(kTessellationBlockPoints > 0);
   const auto range = [&](size_t b) {
     return std::pair(b * blockPatches, std::min(n, (b + 1) * blockPatches));
   };

@@ -107,6 +107,20 @@ TEST(CliLimits, MaxMemoryRefusesMeshesWhoseModelWouldNotFit) {
       dir, "ok");
   EXPECT_EQ(ok.wait(), 0) << ok.stderrText();
   EXPECT_TRUE(fs::exists(dir / "out.obj"));
+  // An OBJ/PLY surface without creases is streamed and charged so: the icosahedron's 20
+  // triangles at the thesis grid fit in 4 MiB (built whole they would need about 6 MiB); the
+  // cube's creases make it build its surface whole, charged once the model is built.
+  CliProcess smooth({"convert", "icosahedron", "--model", "quadric-param", "--tessellation",
+                     "thesis", "--max-memory", "4M", "-o", (dir / "smooth.obj").string()},
+                    dir, "smooth");
+  EXPECT_EQ(smooth.wait(), 0) << smooth.stderrText();
+  CliProcess creased({"convert", "cube", "--model", "quadric-param", "--tessellation", "thesis",
+                      "--max-memory", "4M", "-o", (dir / "cube.obj").string()},
+                     dir, "creased");
+  expectRefused(creased, dir, "cube",
+                {"building its surface whole (a crease splits its normals",
+                 "at tessellation thesis", "over the --max-memory limit of 4.00 MiB"},
+                "cube.obj");
   // Built-in shapes: the model is charged before it is built.
   CliProcess shape({"convert", "icosphere:6", "--model", "quadric-param", "--max-memory", "64M",
                     "-o", (dir / "ico.obj").string()},
@@ -212,8 +226,9 @@ TEST(CliLimits, RenderWithoutTheImageModuleSaysWhereItLookedAndWritesNothing) {
   EXPECT_NE(err.find(missing.string() + ": no such file"), std::string::npos) << err;
   EXPECT_NE(err.find("QUADTRI_IMAGE_MODULE"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir / "out.png"));
-  EXPECT_TRUE(temporaryFiles(dir).empty());
+  // The convert runs beside the render: its own temporary file is gone once it has ended.
   EXPECT_EQ(convert.wait(), 0) << convert.stderrText();
+  EXPECT_TRUE(temporaryFiles(dir).empty());
   EXPECT_TRUE(fs::exists(dir / "tri.ply"));
   fs::remove_all(dir);
 }

@@ -527,6 +527,16 @@ TEST(ModelMemory, G1RegionsAreChargedAsTheirBudgetCapsThem) {
     SCOPED_TRACE(name);
     EXPECT_EQ(modelCappedBytes(name, ModelUse::ConvertJson).cap, 0u);
     EXPECT_EQ(modelCappedBytes(name, ModelUse::ConvertMesh).cap, 0u);
+    // A streamed surface holds one block at most: it stops growing at its cap.
+    const CappedModelBytes block = modelCappedBytes(name, ModelUse::ConvertMeshStreamed, tess);
+    const uint64_t streamed = modelBytesPerTriangle(name, tess, ModelUse::ConvertMeshStreamed);
+    const bool input = streamed == modelBytesPerTriangle(name, tess, ModelUse::ConvertMesh);
+    EXPECT_EQ(block.cap == 0, input);
+    if (!input) {
+      const MemoryBudget charged{0, streamed, block.perTriangle, block.cap};
+      EXPECT_GT(block.perTriangle, 0u);
+      EXPECT_EQ(modelBytes(charged, 2000000) - modelBytes(charged, 1000000), 1000000 * streamed);
+    }
     if (name != "quadric-g1") {
       EXPECT_EQ(modelCappedBytes(name, ModelUse::Render).cap, 0u);
     }

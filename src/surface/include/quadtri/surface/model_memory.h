@@ -9,10 +9,12 @@
 
 namespace quadtri {
 
-/// What the model is built for: `convert` to OBJ/PLY (its tessellated surface and the file's
-/// text), `convert` to JSON (every patch as a JSON object), or tracing it (`render`, and
-/// `analyze`, which traces it for its crack rate): its tessellation and Embree's geometry.
-enum class ModelUse { ConvertMesh, ConvertJson, Render };
+/// What the model is built for: its tessellated surface built whole (`analyze`'s views, and
+/// `convert` to OBJ/PLY where a crease splits a welded point's normal), `convert` to OBJ/PLY
+/// streamed (the model, the lattice walk and one block, saveTessellation), `convert` to JSON
+/// (every patch as a JSON object), or tracing it (`render`, and `analyze`, which traces it for
+/// its crack rate): its tessellation and Embree's geometry.
+enum class ModelUse { ConvertMesh, ConvertMeshStreamed, ConvertJson, Render };
 
 /// Estimated peak bytes per input triangle of building `model` on a mesh and using it: its
 /// patch records, its tessellation (trianglesPerPatch() lattice triangles per patch, each with
@@ -26,13 +28,15 @@ uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tesse
 
 /// The part of a model's cost that grows with the mesh only up to a cap, beside
 /// modelBytesPerTriangle: the regions quadric-g1 traces (defaultSubPatchBudget: 8 per piece,
-/// three pieces per triangle, at most 2^22 per mesh), when it is rendered. Zero for every other
-/// model and use; an unknown name costs the dearest model's.
+/// three pieces per triangle, at most 2^22 per mesh), when it is rendered; the block of a
+/// streamed surface (its points, triangles and text, about kTessellationBlockPoints points at
+/// most). Zero for every other model and use; an unknown name costs the dearest model's.
 struct CappedModelBytes {
   uint64_t perTriangle = 0;  ///< while below the cap
   uint64_t cap = 0;          ///< per mesh
 };
-CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use);
+CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use,
+                                  const Tessellation& tessellation = {});
 
 /// Makes `budget` charge each mesh loaded with it what `model` costs for `use` (its
 /// bytesPerTriangle and capped bytes); with `dearest`, only raises them (several models, one at a
@@ -44,6 +48,14 @@ void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellat
 /// `budget` what the lattice it resolved to (`resolved`) costs beyond that, on `triangles` input
 /// triangles of `model` (`name` names the mesh in the error). Throws as chargeMemory does when
 /// that is over the limit, before the tessellation is built. Nothing for other tessellations.
+/// For a surface saveTessellation builds whole (tessellationBuiltWhole), which setModelBytes
+/// charged as streamed (ConvertMeshStreamed, the model among it): charges `budget` the surface
+/// whole (ConvertMesh) at the `resolved` tessellation, on `triangles` input triangles of
+/// `model`, or throws as chargeMemory does, before the surface is built.
+void chargeWholeTessellation(MemoryBudget& budget, std::string_view model,
+                             const Tessellation& resolved, uint64_t triangles,
+                             const std::string& name);
+
 void chargeResolvedTessellation(MemoryBudget& budget, std::string_view model,
                                 const Tessellation& requested, const Tessellation& resolved,
                                 ModelUse use, uint64_t triangles, const std::string& name);

@@ -67,9 +67,15 @@ TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellat
 /// per welded point), then evaluated and written a block of patches at a time, the points'
 /// positions and normals (OBJ evaluates them twice: its normals follow all its positions), then
 /// their triangles (saveMeshStream). The OBJ bytes are saveMesh's; a PLY file lists its
-/// vertices in point order. With creases the surface is built whole, then written. A block
-/// holds about `blockPoints` points (at least one patch).
+/// vertices in point order. With creases (tessellationBuiltWhole) the surface is built whole,
+/// then written. A block holds about `blockPoints` points (at least one patch).
+inline constexpr size_t kTessellationBlockPoints = size_t(1) << 20;
 size_t saveTessellation(const SurfaceModel& model, const Tessellation& tessellation,
-                        const std::filesystem::path& path, size_t blockPoints = size_t(1) << 20);
+                        const std::filesystem::path& path,
+                        size_t blockPoints = kTessellationBlockPoints);
+
+/// Whether saveTessellation builds `model`'s surface whole before writing it: a crease gives a
+/// point it welds a normal on each side.
+bool tessellationBuiltWhole(const SurfaceModel& model);
 
 }  // namespace quadtri
