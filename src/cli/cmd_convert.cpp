@@ -51,8 +51,7 @@ Action addConvertCommand(CLI::App& app) {
     budget.maxBytes = maxMemory();
     const std::filesystem::path extension = std::filesystem::path(opt->output).extension();
     const bool writesPatches = extension == ".json" || extension == ".qtp";
-    // An OBJ/PLY surface is charged as streamed; where it is built whole instead, the rest is
-    // charged once the model is built (chargeWholeTessellation).
+    // An OBJ/PLY surface is charged as it is written: streamed (saveTessellation).
     const ModelUse use = writesPatches ? ModelUse::ConvertJson : ModelUse::ConvertMeshStreamed;
     setModelBytes(budget, opt->model, requested, use);
     BuiltinMesh input = loadMeshSpec(opt->mesh, opt->normals.options(), &budget);
@@ -69,12 +68,9 @@ Action addConvertCommand(CLI::App& app) {
     // resolved to the level it uses, as Python's Model does; other patch files name the request.
     const Tessellation tessellation = writesPatches ? renderTessellation(*model, requested)
                                                     : resolveTessellation(*model, requested);
-    if (!writesPatches) {
+    if (!writesPatches)
       chargeResolvedTessellation(budget, opt->model, requested, tessellation, use,
                                  mesh->triangleCount(), opt->mesh);
-      if (tessellationBuiltWhole(*model))
-        chargeWholeTessellation(budget, opt->model, tessellation, mesh->triangleCount(), opt->mesh);
-    }
     const size_t written = writeConversion(*model, tessellation, opt->output);
     const std::string what =
         written > 0 ? fmt::format("{} triangles, tessellation {}{}", written,

@@ -550,13 +550,15 @@ void saveMeshStream(const MeshStream& mesh, const std::filesystem::path& path) {
   const std::string ext = mesh_check::lowerExtension(path);
   if (ext != ".obj" && ext != ".ply")
     fail("{}: unsupported output format '{}': expected .obj or .ply", path.string(), ext);
+  const size_t extras = mesh.hasNormals ? mesh.extraNormals : 0;
   std::vector<Vec3> positions, normals;
-  std::vector<Tri> triangles;
+  std::vector<Tri> triangles, normalIndices;
   size_t seen = 0;
-  const auto points = [&](size_t b) {
+  // Block b's points (or, with `extra`, its extra normals and their points' positions).
+  const auto points = [&](size_t b, bool extra) {
     positions.clear();
     normals.clear();
-    mesh.blockPoints(b, positions, normals);
+    (extra ? mesh.blockExtraNormals : mesh.blockPoints)(b, positions, normals);
     for (const Vec3& p : positions)
       if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
     if (mesh.hasNormals && normals.size() != positions.size())
@@ -566,12 +568,24 @@ void saveMeshStream(const MeshStream& mesh, const std::filesystem::path& path) {
   };
   const auto faces = [&](size_t b) {
     triangles.clear();
-    mesh.blockTriangles(b, triangles);
-    for (const Tri& tri : triangles)
-      for (const uint32_t v : tri)
-        if (v >= mesh.points)
-          fail("{}: a triangle of block {} names point {} of {}", path.string(), b, v, mesh.points);
+    normalIndices.clear();
+    mesh.blockTriangles(b, triangles, normalIndices);
+    if (!normalIndices.empty() && normalIndices.size() != triangles.size())
+      fail("{}: block {} has {} triangles and {} normal triples", path.string(), b,
+           triangles.size(), normalIndices.size());
+    for (size_t t = 0; t < triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        if (triangles[t][k] >= mesh.points ||
+            (!normalIndices.empty() && normalIndices[t][k] >= mesh.points + extras))
+          fail("{}: triangle {} of block {} names point {} or normal {} of {} and {}",
+               path.string(), t, b, triangles[t][k],
+               normalIndices.empty() ? triangles[t][k] : normalIndices[t][k], mesh.points,
+               mesh.points + extras);
     seen += triangles.size();
+  };
+  // A corner's normal: its point's, or the one the block names.
+  const auto normalOf = [&](size_t t) -> const Tri& {
+    return normalIndices.empty() ? triangles[t] : normalIndices[t];
   };
   const auto check = [&](size_t expected, const char* what) {
     if (seen != expected)
@@ -582,38 +596,46 @@ void saveMeshStream(const MeshStream& mesh, const std::filesystem::path& path) {
     if (ext == ".obj") {
       out << "# written by quadtri\n";
       for (size_t b = 0; b < mesh.blocks; ++b) {
-        points(b);
+        points(b, false);
         writeLines(out, positions.size(),
                    [&](fmt::memory_buffer& text, size_t i) { objPoint(text, "v", positions[i]); });
       }
       check(mesh.points, "points");
       if (mesh.hasNormals) {
-        for (size_t b = 0; b < mesh.blocks; ++b) {
-          points(b);
-          writeLines(out, normals.size(),
-                     [&](fmt::memory_buffer& text, size_t i) { objPoint(text, "vn", normals[i]); });
+        for (const bool extra : {false, true}) {
+          for (size_t b = 0; b < mesh.blocks && (!extra || extras > 0); ++b) {
+            points(b, extra);
+            writeLines(out, normals.size(), [&](fmt::memory_buffer& text, size_t i) {
+              objPoint(text, "vn", normals[i]);
+            });
+          }
+          check(extra ? extras : mesh.points, extra ? "extra normals" : "points");
         }
-        check(mesh.points, "points");
       }
       for (size_t b = 0; b < mesh.blocks; ++b) {
         faces(b);
         writeLines(out, triangles.size(), [&](fmt::memory_buffer& text, size_t t) {
-          objFace(text, triangles[t], mesh.hasNormals ? &triangles[t] : nullptr);
+          objFace(text, triangles[t], mesh.hasNormals ? &normalOf(t) : nullptr);
         });
       }
       check(mesh.triangles, "triangles");
       return;
     }
-    PlyOut ply(out, plyHeader(mesh.points, mesh.hasNormals, mesh.triangles));
-    for (size_t b = 0; b < mesh.blocks; ++b) {
-      points(b);
-      for (size_t i = 0; i < positions.size(); ++i)
-        ply.vertex(positions[i], mesh.hasNormals ? &normals[i] : nullptr);
+    // A vertex per normal: the points with their own, then each extra normal at its point; a
+    // corner's vertex is its normal's.
+    PlyOut ply(out, plyHeader(mesh.points + extras, mesh.hasNormals, mesh.triangles));
+    for (const bool extra : {false, true}) {
+      for (size_t b = 0; b < mesh.blocks && (!extra || extras > 0); ++b) {
+        points(b, extra);
+        for (size_t i = 0; i < positions.size(); ++i)
+          ply.vertex(positions[i], mesh.hasNormals ? &normals[i] : nullptr);
+      }
+      check(extra ? extras : mesh.points, extra ? "extra normals" : "points");
     }
-    check(mesh.points, "points");
     for (size_t b = 0; b < mesh.blocks; ++b) {
       faces(b);
-      for (const Tri& tri : triangles) ply.face(tri[0], tri[1], tri[2]);
+      for (size_t t = 0; t < triangles.size(); ++t)
+        ply.face(normalOf(t)[0], normalOf(t)[1], normalOf(t)[2]);
     }
     check(mesh.triangles, "triangles");
     ply.flush(true);

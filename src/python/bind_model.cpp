@@ -206,8 +206,8 @@ input triangles (split normals as load_mesh treats them).
           },
           py::arg("path"), py::arg("level") = py::none(), R"doc(
 Writes what `quadtri convert MESH --model NAME -o PATH` writes, by PATH's extension: .obj or .ply
-the surface (tessellate's triangles, streamed a block of patches at a time where each point has one
-normal), .json the patch JSON, .qtp the binary patch table. Returns the triangles written to an
+the surface (tessellate's triangles, streamed a block of patches at a time, never whole in memory),
+.json the patch JSON, .qtp the binary patch table. Returns the triangles written to an
 OBJ/PLY file (0 otherwise). The file appears whole or not at all.
 )doc")
       .def(

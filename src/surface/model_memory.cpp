@@ -105,20 +105,6 @@ void chargeResolvedTessellation(MemoryBudget& budget, std::string_view model,
       fmt::format("tessellating its {} triangles at level {} (auto)", triangles, resolved.level));
 }
 
-void chargeWholeTessellation(MemoryBudget& budget, std::string_view model,
-                             const Tessellation& resolved, uint64_t triangles,
-                             const std::string& name) {
-  // The surface whole (the lattice cost, which leaves the model out), on top of the streamed
-  // charge, which has the model (and a block this path does not build).
-  const uint64_t needed = modelBytesPerTriangle(model, resolved, ModelUse::ConvertMesh);
-  MemoryBudget extra;
-  extra.bytesPerTriangle = needed;
-  chargeMemory(budget, modelBytes(extra, triangles), name,
-               fmt::format("building its surface whole (a crease splits its normals; {} bytes "
-                           "per triangle) at tessellation {}",
-                           needed, tessellationName(resolved)));
-}
-
 void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellation& tessellation,
                    ModelUse use, bool dearest) {
   const uint64_t perTriangle = modelBytesPerTriangle(model, tessellation, use);

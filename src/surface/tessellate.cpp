@@ -356,9 +356,15 @@ class LatticeWalk {
   }
 
   /// Triangle t's crease normals: where it reuses a point at a split vertex or edge, its own
-  /// surface normal there, when it differs from `normals`' one for that point.
-  void creaseNormals(size_t t, const std::vector<Vec3>& normals,
-                     std::vector<std::pair<size_t, Vec3>>& found) const {
+  /// surface normal there, when it differs from the one the point was numbered with
+  /// (numbered(point)), in the order of its points.
+  struct CreaseNormal {
+    size_t i;        // the point's index in the pattern
+    uint32_t point;  // its number
+    Vec3 normal;
+  };
+  template <typename Numbered>
+  void creaseNormals(size_t t, const Numbered& numbered, std::vector<CreaseNormal>& found) const {
     found.clear();
     std::vector<uint32_t> local(points());
     std::vector<uint8_t> isNew(points()), split(points());
@@ -366,8 +372,21 @@ class LatticeWalk {
     for (size_t i = 0; i < points(); ++i) {
       if (isNew[i] || !split[i]) continue;
       const Vec3 normal = evaluate(t, i).second;
-      if (normal != normals[local[i]]) found.emplace_back(i, normal);
+      if (normal != numbered(local[i])) found.push_back({i, local[i], normal});
     }
+  }
+
+  /// The position and normal point p was numbered with, by the patch that numbered it.
+  std::pair<Vec3, Vec3> numberedPoint(uint32_t p) const {
+    const size_t t =
+        size_t(std::upper_bound(firstPoint_.begin(), firstPoint_.end(), p) - firstPoint_.begin()) -
+        1;
+    std::vector<uint32_t> local(points());
+    std::vector<uint8_t> isNew(points()), split(points());
+    localPoints(t, local.data(), isNew.data(), split.data());
+    for (size_t i = 0; i < points(); ++i)
+      if (isNew[i] && local[i] == p) return evaluate(t, i);
+    fail("tessellation: point {} is not among the points patch {} numbered", p, t);
   }
 
  private:
@@ -406,6 +425,58 @@ class LatticeWalk {
 
 namespace {
 
+// Crease normals: where a triangle reuses a point at a split vertex or edge, its own surface
+// normal there, when it differs from the one the point was numbered with (numbered(point)),
+// becomes an extra normal after the points' ones, numbered in the order of the walk. They are
+// counted per patch (extraBefore[t]: how many the patches before t have), then written at those
+// counts; the few points they sit on are evaluated again each time.
+template <typename Numbered>
+std::vector<size_t> countCreaseNormals(const LatticeWalk& walk, const Numbered& numbered) {
+  const size_t n = walk.patches();
+  std::vector<size_t> extraBefore = largeVector<size_t>(n + 1);
+  parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     std::vector<LatticeWalk::CreaseNormal> found;
+                     for (size_t t = range.begin(); t != range.end(); ++t) {
+                       walk.creaseNormals(t, numbered, found);
+                       extraBefore[t + 1] = found.size();
+                     }
+                   });
+  for (size_t t = 0; t < n; ++t) extraBefore[t + 1] += extraBefore[t];
+  if (walk.pointCount() + extraBefore[n] > kMaxLatticeIndex)
+    fail("tessellating {} patches: more than {} normals", n, kMaxLatticeIndex);
+  return extraBefore;
+}
+
+// For patches [begin, end): each extra normal f of patch t goes to extra(k, crease) with k =
+// extraBefore[t] - extraBefore[begin] + f, and the corners of its triangles at that point
+// (normalIndices[(t - begin) * per patch + j]) take its number, the points' count plus
+// extraBefore[t] + f.
+template <typename Numbered, typename Extra>
+void writeCreaseNormals(const LatticeWalk& walk, const std::vector<size_t>& extraBefore,
+                        const Numbered& numbered, size_t begin, size_t end, Tri* normalIndices,
+                        const Extra& extra) {
+  const size_t perPatch = walk.trianglesPerPatch();
+  const PatchPattern& pattern = walk.pattern();
+  parallelForRange(tbb::blocked_range<size_t>(begin, end, 256),
+                   [&](const tbb::blocked_range<size_t>& range) {
+                     std::vector<LatticeWalk::CreaseNormal> found;
+                     for (size_t t = range.begin(); t != range.end(); ++t) {
+                       if (extraBefore[t] == extraBefore[t + 1]) continue;
+                       walk.creaseNormals(t, numbered, found);
+                       for (size_t f = 0; f < found.size(); ++f) {
+                         extra(extraBefore[t] - extraBefore[begin] + f, found[f]);
+                         const auto index = uint32_t(walk.pointCount() + extraBefore[t] + f);
+                         if (!normalIndices) continue;
+                         for (size_t j = 0; j < perPatch; ++j)
+                           for (int c = 0; c < 3; ++c)
+                             if (size_t(pattern.triangles[j][c]) == found[f].i)
+                               normalIndices[(t - begin) * perPatch + j][c] = index;
+                       }
+                     }
+                   });
+}
+
 // The tessellation that walk numbers, whole.
 TriangleMesh tessellateWalk(const LatticeWalk& walk) {
   const size_t n = walk.patches(), perPatch = walk.trianglesPerPatch();
@@ -417,51 +488,18 @@ TriangleMesh tessellateWalk(const LatticeWalk& walk) {
   resizeLarge(out.normalIndices, out.triangles.size());
   out.normalIndices = out.triangles;
   if (!walk.creased()) return out;
-  // Crease normals: where a triangle reuses a point at a split vertex or edge, its own surface
-  // normal there, when it differs from the one the point was numbered with, becomes an extra
-  // normal after the points' ones, numbered in the order of the walk. Counted, then written
-  // (evaluating those few points twice).
-  std::vector<size_t> extraBefore = largeVector<size_t>(n + 1);
-  parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
-                   [&](const tbb::blocked_range<size_t>& range) {
-                     std::vector<std::pair<size_t, Vec3>> found;
-                     for (size_t t = range.begin(); t != range.end(); ++t) {
-                       walk.creaseNormals(t, out.normals, found);
-                       extraBefore[t + 1] = found.size();
-                     }
-                   });
-  for (size_t t = 0; t < n; ++t) extraBefore[t + 1] += extraBefore[t];
+  const auto numbered = [&](uint32_t p) { return out.normals[p]; };
+  const std::vector<size_t> extraBefore = countCreaseNormals(walk, numbered);
   if (extraBefore[n] == 0) return out;
   const size_t base = out.normals.size();
-  if (base + extraBefore[n] > kMaxLatticeIndex)
-    fail("tessellating {} patches: more than {} normals", n, kMaxLatticeIndex);
   out.normals.resize(base + extraBefore[n]);
-  const PatchPattern& pattern = walk.pattern();
-  parallelForRange(tbb::blocked_range<size_t>(0, n, 256),
-                   [&](const tbb::blocked_range<size_t>& range) {
-                     std::vector<std::pair<size_t, Vec3>> found;
-                     for (size_t t = range.begin(); t != range.end(); ++t) {
-                       if (extraBefore[t] == extraBefore[t + 1]) continue;
-                       walk.creaseNormals(t, out.normals, found);
-                       for (size_t f = 0; f < found.size(); ++f) {
-                         const auto [i, normal] = found[f];
-                         const uint32_t index = uint32_t(base + extraBefore[t] + f);
-                         out.normals[index] = normal;
-                         for (size_t j = 0; j < perPatch; ++j)
-                           for (int c = 0; c < 3; ++c)
-                             if (size_t(pattern.triangles[j][c]) == i)
-                               out.normalIndices[t * perPatch + j][c] = index;
-                       }
-                     }
-                   });
+  writeCreaseNormals(
+      walk, extraBefore, numbered, 0, n, out.normalIndices.data(),
+      [&](size_t k, const LatticeWalk::CreaseNormal& c) { out.normals[base + k] = c.normal; });
   return out;
 }
 
 }  // namespace
-
-bool tessellationBuiltWhole(const SurfaceModel& model) {
-  return findSplits(model).any();
-}
 
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& requested) {
   if (model.representation() == Representation::InputTriangles) return model.mesh();
@@ -476,20 +514,20 @@ size_t saveTessellation(const SurfaceModel& model, const Tessellation& requested
     return model.mesh().triangleCount();
   }
   const LatticeWalk walk(model, resolveTessellation(model, requested));
-  if (walk.creased()) {
-    const TriangleMesh surface = tessellateWalk(walk);
-    saveMesh(surface, path);
-    return surface.triangleCount();
-  }
-  // A block's points are the numbers its patches give.
+  // A block's points are the numbers its patches give, its extra normals (creases) the ones
+  // extraBefore gives them.
   const size_t n = walk.patches(), perPatch = walk.trianglesPerPatch();
   const size_t blockPatches = std::max<size_t>(1, blockPoints / walk.points());
-  static_assert(kTessellationBlockPoints > 0);
   const auto range = [&](size_t b) {
     return std::pair(b * blockPatches, std::min(n, (b + 1) * blockPatches));
   };
+  // The normal (and position) a point was numbered with, evaluated again by its patch.
+  const auto numbered = [&](uint32_t p) { return walk.numberedPoint(p).second; };
+  const std::vector<size_t> extraBefore =
+      walk.creased() ? countCreaseNormals(walk, numbered) : std::vector<size_t>();
   MeshStream stream;
   stream.points = walk.pointCount();
+  stream.extraNormals = extraBefore.empty() ? 0 : extraBefore.back();
   stream.triangles = n * perPatch;
   stream.blocks = (n + blockPatches - 1) / blockPatches;
   stream.blockPoints = [&](size_t b, std::vector<Vec3>& positions, std::vector<Vec3>& normals) {
@@ -499,10 +537,27 @@ size_t saveTessellation(const SurfaceModel& model, const Tessellation& requested
     normals.resize(count);
     walk.evaluateBlock(begin, end, positions.data(), normals.data(), nullptr);
   };
-  stream.blockTriangles = [&](size_t b, std::vector<Tri>& triangles) {
+  stream.blockExtraNormals = [&](size_t b, std::vector<Vec3>& positions,
+                                 std::vector<Vec3>& normals) {
+    if (stream.extraNormals == 0) return;
+    const auto [begin, end] = range(b);
+    positions.resize(extraBefore[end] - extraBefore[begin]);
+    normals.resize(positions.size());
+    writeCreaseNormals(walk, extraBefore, numbered, begin, end, nullptr,
+                       [&](size_t k, const LatticeWalk::CreaseNormal& c) {
+                         positions[k] = walk.numberedPoint(c.point).first;
+                         normals[k] = c.normal;
+                       });
+  };
+  stream.blockTriangles = [&](size_t b, std::vector<Tri>& triangles,
+                              std::vector<Tri>& normalIndices) {
     const auto [begin, end] = range(b);
     triangles.resize((end - begin) * perPatch);
     walk.evaluateBlock(begin, end, nullptr, nullptr, triangles.data());
+    if (stream.extraNormals == 0) return;  // every corner's normal is its point's
+    normalIndices = triangles;
+    writeCreaseNormals(walk, extraBefore, numbered, begin, end, normalIndices.data(),
+                       [](size_t, const LatticeWalk::CreaseNormal&) {});
   };
   saveMeshStream(stream, path);
   return stream.triangles;

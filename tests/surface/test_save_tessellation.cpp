@@ -1,5 +1,6 @@
 // A tessellated surface written block by block (saveTessellation) is the surface tessellate
-// builds whole: the same OBJ bytes, and a PLY file whose vertices are its points in order.
+// builds whole: the same OBJ bytes, and a PLY file whose vertices are its normals in order, each
+// at its point.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,21 +70,23 @@ Ply readPly(const std::string& bytes) {
 }
 
 TEST(SaveTessellation, BlockByBlockIsTheWholeSurface) {
-  // The torus has one normal per point and is streamed, in one block and in blocks of a few
-  // patches; the cylinder's rims split normals, so a model that welds its points there builds
-  // it whole and saveMesh writes it.
+  // The torus has one normal per point; the cylinder's rims give the points a model welds there
+  // a normal on each side (extra normals after the points'), in one block and in blocks of a
+  // few patches, at a lattice level and on the thesis grid.
   struct Case {
     const char* spec;
     Tessellation tessellation;
     size_t blockPoints;
-    bool streamed;
   };
   const std::vector<Case> cases = {
-      {"torus:1,0.35,16,8", Tessellation{Tessellation::Kind::Lattice, 3}, size_t(1) << 20, true},
-      {"torus:1,0.35,16,8", Tessellation{Tessellation::Kind::Lattice, 3}, 37, true},
-      {"torus:1,0.35,6,4", Tessellation::thesis(), 3000, true},
-      {"cylinder:12,3", Tessellation{Tessellation::Kind::Lattice, 2}, 40, false}};
+      {"torus:1,0.35,16,8", Tessellation{Tessellation::Kind::Lattice, 3}, size_t(1) << 20},
+      {"torus:1,0.35,16,8", Tessellation{Tessellation::Kind::Lattice, 3}, 37},
+      {"torus:1,0.35,6,4", Tessellation::thesis(), 3000},
+      {"cylinder:12,3", Tessellation{Tessellation::Kind::Lattice, 2}, 40},
+      {"cylinder:12,3", Tessellation{Tessellation::Kind::Lattice, 4}, size_t(1) << 20},
+      {"cylinder:6,2", Tessellation::thesis(), 6000}};
   const fs::path dir = testDir();
+  bool someCrease = false;
   for (const Case& c : cases) {
     const auto mesh = std::make_shared<const TriangleMesh>(parseBuiltinSpec(c.spec)->mesh);
     for (const std::string& name : modelNames()) {
@@ -97,29 +100,35 @@ TEST(SaveTessellation, BlockByBlockIsTheWholeSurface) {
                   whole.triangleCount());
         saveMesh(whole, reference);
         const std::string got = bytesOf(streamed), want = bytesOf(reference);
-        // The torus is streamed; so is the cylinder under a model that does not weld points.
-        const bool tessellated = model->representation() != Representation::InputTriangles;
-        const bool inPointOrder =
-            std::string(ext) == ".ply" && tessellated && (c.streamed || !model->sharesEdges());
-        if (!inPointOrder) {
+        if (std::string(ext) == ".obj" ||
+            model->representation() == Representation::InputTriangles) {
           EXPECT_TRUE(got == want) << ext;
           continue;
         }
-        // Vertex i is point i; the faces are the triangles.
+        // A vertex per normal: normal v with its point's position (a point's own normal has
+        // its number; an extra one is at the point whose corners name it); the faces' vertices
+        // are their corners' normals.
+        const size_t points = whole.positions.size();
+        someCrease = someCrease || whole.normals.size() > points;
+        std::vector<uint32_t> pointOf(whole.normals.size(), ~0u);
+        for (size_t t = 0; t < whole.triangles.size(); ++t)
+          for (int k = 0; k < 3; ++k) pointOf[whole.normalIndices[t][k]] = whole.triangles[t][k];
         const Ply ply = readPly(got);
-        ASSERT_EQ(ply.vertices.size(), 6 * whole.positions.size());
-        ASSERT_EQ(whole.normals.size(), whole.positions.size());
-        EXPECT_EQ(whole.normalIndices, whole.triangles);
+        ASSERT_EQ(ply.vertices.size(), 6 * whole.normals.size());
         bool same = true;
-        for (size_t i = 0; i < whole.positions.size(); ++i)
+        for (size_t v = 0; v < whole.normals.size(); ++v) {
+          const size_t p = v < points ? v : pointOf[v];
+          ASSERT_LT(p, points);
           for (int k = 0; k < 3; ++k)
-            same = same && ply.vertices[6 * i + k] == float(whole.positions[i][k]) &&
-                   ply.vertices[6 * i + 3 + k] == float(whole.normals[i][k]);
+            same = same && ply.vertices[6 * v + k] == float(whole.positions[p][k]) &&
+                   ply.vertices[6 * v + 3 + k] == float(whole.normals[v][k]);
+        }
         EXPECT_TRUE(same);
-        EXPECT_EQ(ply.faces, whole.triangles);
+        EXPECT_EQ(ply.faces, whole.normalIndices);
       }
     }
   }
+  EXPECT_TRUE(someCrease);  // the cylinder's rims did give extra normals
 }
 
 TEST(SaveTessellation, BlocksThatDoNotHoldTheCountsWriteNothing) {
@@ -133,7 +142,9 @@ TEST(SaveTessellation, BlocksThatDoNotHoldTheCountsWriteNothing) {
     p = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
     n = {Vec3(0, 0, 1), Vec3(0, 0, 1)};
   };
-  stream.blockTriangles = [](size_t, std::vector<Tri>& t) { t = {Tri{0, 1, 2}}; };
+  stream.blockTriangles = [](size_t, std::vector<Tri>& t, std::vector<Tri>&) {
+    t = {Tri{0, 1, 2}};
+  };
   EXPECT_THROW(saveMeshStream(stream, path), Error);
   EXPECT_FALSE(fs::exists(path));
   stream.blockPoints = [](size_t, std::vector<Vec3>& p, std::vector<Vec3>& n) {

@@ -25,24 +25,32 @@ TriangleMesh loadMesh(const std::filesystem::path& path, const NormalOptions& no
 /// The file appears atomically.
 void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path);
 
-/// A mesh that saveMeshStream writes block by block, never whole: one normal per point
-/// (normal i is point i's, as the triangles index both) or none. The blocks' points, in
-/// block order, are points 0 to `points` - 1; their triangles, in block order, the mesh's.
+/// A mesh that saveMeshStream writes block by block, never whole: with normals, one per point
+/// (normal i is point i's) and `extraNormals` more after them, each at one of the points; or
+/// none. The blocks' points, in block order, are points 0 to `points` - 1; their extra normals,
+/// in block order, normals `points` on; their triangles, in block order, the mesh's.
 struct MeshStream {
-  size_t points = 0, triangles = 0, blocks = 0;
+  size_t points = 0, extraNormals = 0, triangles = 0, blocks = 0;
   bool hasNormals = true;
   /// Appends block b's points to positions and (with normals) normals.
   std::function<void(size_t b, std::vector<Vec3>& positions, std::vector<Vec3>& normals)>
       blockPoints;
-  /// Appends block b's triangles.
-  std::function<void(size_t b, std::vector<Tri>& triangles)> blockTriangles;
+  /// Appends block b's extra normals, and the position of the point each is at (needed when
+  /// extraNormals > 0).
+  std::function<void(size_t b, std::vector<Vec3>& positions, std::vector<Vec3>& normals)>
+      blockExtraNormals;
+  /// Appends block b's triangles and, where some corner takes an extra normal, every corner's
+  /// normal index (left empty: each corner's normal is its point's).
+  std::function<void(size_t b, std::vector<Tri>& triangles, std::vector<Tri>& normalIndices)>
+      blockTriangles;
 };
 
 /// Writes such a mesh as saveMesh writes it, a block at a time: an OBJ file the bytes saveMesh
-/// writes for the whole mesh; a PLY file with its vertices in point order (saveMesh numbers
-/// them by first use). OBJ's points are asked for twice, for their positions and then their
-/// normals. The file appears atomically; nothing is written when a block has a non-finite
-/// position or the blocks do not hold the counts.
+/// writes for the whole mesh; a PLY file with a vertex per normal, in normal order (a point's
+/// own, then the extra ones at their points; saveMesh numbers them by first use). OBJ's points
+/// are asked for twice, for their positions and then their normals. The file appears
+/// atomically; nothing is written when a block has a non-finite position or the blocks do not
+/// hold the counts.
 void saveMeshStream(const MeshStream& mesh, const std::filesystem::path& path);
 
 }  // namespace quadtri

@@ -9,9 +9,9 @@
 
 namespace quadtri {
 
-/// What the model is built for: its tessellated surface built whole (`analyze`'s views, and
-/// `convert` to OBJ/PLY where a crease splits a welded point's normal), `convert` to OBJ/PLY
-/// streamed (the model, the lattice walk and one block, saveTessellation), `convert` to JSON
+/// What the model is built for: its tessellated surface built whole (`analyze`'s views),
+/// `convert` to OBJ/PLY, streamed (the model, the lattice walk and one block,
+/// saveTessellation), `convert` to JSON
 /// (every patch as a JSON object), or tracing it (`render`, and `analyze`, which traces it for
 /// its crack rate): its tessellation and Embree's geometry.
 enum class ModelUse { ConvertMesh, ConvertMeshStreamed, ConvertJson, Render };
@@ -48,14 +48,6 @@ void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellat
 /// `budget` what the lattice it resolved to (`resolved`) costs beyond that, on `triangles` input
 /// triangles of `model` (`name` names the mesh in the error). Throws as chargeMemory does when
 /// that is over the limit, before the tessellation is built. Nothing for other tessellations.
-/// For a surface saveTessellation builds whole (tessellationBuiltWhole), which setModelBytes
-/// charged as streamed (ConvertMeshStreamed, the model among it): charges `budget` the surface
-/// whole (ConvertMesh) at the `resolved` tessellation, on `triangles` input triangles of
-/// `model`, or throws as chargeMemory does, before the surface is built.
-void chargeWholeTessellation(MemoryBudget& budget, std::string_view model,
-                             const Tessellation& resolved, uint64_t triangles,
-                             const std::string& name);
-
 void chargeResolvedTessellation(MemoryBudget& budget, std::string_view model,
                                 const Tessellation& requested, const Tessellation& resolved,
                                 ModelUse use, uint64_t triangles, const std::string& name);

@@ -62,20 +62,17 @@ Tessellation renderTessellation(const SurfaceModel& model, const Tessellation& t
 TriangleMesh tessellate(const SurfaceModel& model, const Tessellation& tessellation);
 
 /// Writes tessellate(model, tessellation) to an OBJ or PLY file (saveMesh's formats) and
-/// returns its triangle count. Where every point has one normal (no crease splits one), the
-/// surface is never whole in memory: its points are numbered first (a few bytes per patch and
-/// per welded point), then evaluated and written a block of patches at a time, the points'
-/// positions and normals (OBJ evaluates them twice: its normals follow all its positions), then
-/// their triangles (saveMeshStream). The OBJ bytes are saveMesh's; a PLY file lists its
-/// vertices in point order. With creases (tessellationBuiltWhole) the surface is built whole,
-/// then written. A block holds about `blockPoints` points (at least one patch).
+/// returns its triangle count, never building the surface whole: its points are numbered first
+/// (a few bytes per patch and per welded point), and so are its crease normals (where a crease
+/// gives a welded point another normal on one side, counted per patch); then the points are
+/// evaluated and written a block of patches at a time, their positions and normals (OBJ
+/// evaluates them twice: its normals follow all its positions), the crease normals, and the
+/// triangles (saveMeshStream). The OBJ bytes are saveMesh's; a PLY file lists its vertices in
+/// point order, a crease normal's vertex after them. A block holds about `blockPoints` points
+/// (at least one patch).
 inline constexpr size_t kTessellationBlockPoints = size_t(1) << 20;
 size_t saveTessellation(const SurfaceModel& model, const Tessellation& tessellation,
                         const std::filesystem::path& path,
                         size_t blockPoints = kTessellationBlockPoints);
-
-/// Whether saveTessellation builds `model`'s surface whole before writing it: a crease gives a
-/// point it welds a normal on each side.
-bool tessellationBuiltWhole(const SurfaceModel& model);
 
 }  // namespace quadtri
