@@ -30,9 +30,10 @@ double walkBytes(const Tessellation& t) {
 }
 
 // A streamed surface's block: per patch, its points (position and normal, in double) and
-// triangles; at most kTessellationBlockPoints points with their triangles (about two per
-// point), and the text of a window of OBJ lines (8 × 16,384 lines of at most about 80 bytes).
-// An Adaptive tessellation's block is charged at its highest level: the cap bounds it anyway.
+// triangles with their normal indices; at most kTessellationBlockPoints points with their triangles
+// (about two per point), and the text of a window of OBJ lines (8 × 16,384 lines of at most about
+// 80 bytes). An Adaptive tessellation's block is charged at its highest level: the cap bounds it
+// anyway.
 CappedModelBytes streamBlockBytes(const Tessellation& t) {
   const Tessellation highest = t.kind == Tessellation::Kind::Adaptive
                                    ? Tessellation{Tessellation::Kind::Lattice, t.level}
@@ -40,8 +41,9 @@ CappedModelBytes streamBlockBytes(const Tessellation& t) {
   const double side = double(edgeSteps(highest) + 1);
   const double points =
       t.kind == Tessellation::Kind::ThesisGrid ? side * side : side * (side + 1.0) / 2.0;
-  const double block = double(kTessellationBlockPoints) * (48.0 + 2.0 * 12.0) + 8 * 16384 * 80.0;
-  return {uint64_t(points * 48.0 + double(highest.trianglesPerPatch()) * 12.0), uint64_t(block)};
+  // Triangles and, where creases give extra normals, their normal indices: 24 bytes each.
+  const double block = double(kTessellationBlockPoints) * (48.0 + 2.0 * 24.0) + 8 * 16384 * 80.0;
+  return {uint64_t(points * 48.0 + double(highest.trianglesPerPatch()) * 24.0), uint64_t(block)};
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "quadtri/surface/tessellate.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -292,6 +293,15 @@ class LatticeWalk {
       }
     }
     firstPoint_[n] = uint32_t(next);
+    // Each corner's and edge point's index in the pattern (a corner's first: the thesis grid's
+    // last row is all corner 2).
+    cornerIndex_.fill(~size_t(0));
+    for (std::vector<size_t>& e : edgeIndex_) e.assign(size_t(steps_) + 1, ~size_t(0));
+    for (size_t i = points(); i-- > 0;) {
+      const PointSite& s = pattern_.sites[i];
+      if (s.kind == PointSite::Kind::Corner) cornerIndex_[size_t(s.corner)] = i;
+      if (s.kind == PointSite::Kind::Edge) edgeIndex_[size_t(s.edge)][size_t(s.step)] = i;
+    }
   }
 
   size_t patches() const { return mesh_.triangleCount(); }
@@ -357,7 +367,7 @@ class LatticeWalk {
 
   /// Triangle t's crease normals: where it reuses a point at a split vertex or edge, its own
   /// surface normal there, when it differs from the one the point was numbered with
-  /// (numbered(point)), in the order of its points.
+  /// (numbered(t, i, point)), in the order of its points.
   struct CreaseNormal {
     size_t i;        // the point's index in the pattern
     uint32_t point;  // its number
@@ -372,21 +382,35 @@ class LatticeWalk {
     for (size_t i = 0; i < points(); ++i) {
       if (isNew[i] || !split[i]) continue;
       const Vec3 normal = evaluate(t, i).second;
-      if (normal != numbered(local[i])) found.push_back({i, local[i], normal});
+      if (normal != numbered(t, i, local[i])) found.push_back({i, local[i], normal});
     }
   }
 
-  /// The position and normal point p was numbered with, by the patch that numbered it.
-  std::pair<Vec3, Vec3> numberedPoint(uint32_t p) const {
-    const size_t t =
-        size_t(std::upper_bound(firstPoint_.begin(), firstPoint_.end(), p) - firstPoint_.begin()) -
-        1;
-    std::vector<uint32_t> local(points());
-    std::vector<uint8_t> isNew(points()), split(points());
-    localPoints(t, local.data(), isNew.data(), split.data());
-    for (size_t i = 0; i < points(); ++i)
-      if (isNew[i] && local[i] == p) return evaluate(t, i);
-    fail("tessellation: point {} is not among the points patch {} numbered", p, t);
+  /// The position and normal that point i of triangle t (a welded point: a mesh vertex or an
+  /// edge point) was numbered with, by the patch that numbered it: the last patch whose first
+  /// number is at most the point's, at its own index of that vertex or edge point.
+  std::pair<Vec3, Vec3> numberedPoint(size_t t, size_t i) const {
+    bool split;
+    const uint32_t* slot = slotOf(t, i, split);
+    if (!slot) return evaluate(t, i);
+    const size_t owner = size_t(std::upper_bound(firstPoint_.begin(), firstPoint_.end(), *slot) -
+                                firstPoint_.begin()) -
+                         1;
+    const PointSite& s = pattern_.sites[i];
+    if (s.kind == PointSite::Kind::Corner) {
+      const uint32_t v = mesh_.triangles[t][s.corner];
+      for (int k = 0; k < 3; ++k)
+        if (mesh_.triangles[owner][k] == v) return evaluate(owner, cornerIndex_[k]);
+    } else {
+      const uint32_t e = topo_.edgeOf[t][s.edge];
+      const int fromA = mesh_.triangles[t][s.edge] == topo_.edges[e].a ? s.step : steps_ - s.step;
+      for (int k = 0; k < 3; ++k)
+        if (topo_.edgeOf[owner][k] == e) {
+          const bool ownerFromA = mesh_.triangles[owner][k] == topo_.edges[e].a;
+          return evaluate(owner, edgeIndex_[k][size_t(ownerFromA ? fromA : steps_ - fromA)]);
+        }
+    }
+    fail("tessellation: point {} of patch {} is not on patch {}, which numbered it", i, t, owner);
   }
 
  private:
@@ -419,6 +443,8 @@ class LatticeWalk {
   const Splits splits_;
   mutable std::vector<uint32_t> cornerVertex_, edgeVertex_;  // filled by the numbering only
   std::vector<uint32_t> firstPoint_;
+  std::array<size_t, 3> cornerIndex_{};
+  std::array<std::vector<size_t>, 3> edgeIndex_;
 };
 
 }  // namespace
@@ -426,7 +452,7 @@ class LatticeWalk {
 namespace {
 
 // Crease normals: where a triangle reuses a point at a split vertex or edge, its own surface
-// normal there, when it differs from the one the point was numbered with (numbered(point)),
+// normal there, when it differs from the one the point was numbered with (numbered(t, i, point)),
 // becomes an extra normal after the points' ones, numbered in the order of the walk. They are
 // counted per patch (extraBefore[t]: how many the patches before t have), then written at those
 // counts; the few points they sit on are evaluated again each time.
@@ -465,7 +491,7 @@ void writeCreaseNormals(const LatticeWalk& walk, const std::vector<size_t>& extr
                        if (extraBefore[t] == extraBefore[t + 1]) continue;
                        walk.creaseNormals(t, numbered, found);
                        for (size_t f = 0; f < found.size(); ++f) {
-                         extra(extraBefore[t] - extraBefore[begin] + f, found[f]);
+                         extra(extraBefore[t] - extraBefore[begin] + f, t, found[f]);
                          const auto index = uint32_t(walk.pointCount() + extraBefore[t] + f);
                          if (!normalIndices) continue;
                          for (size_t j = 0; j < perPatch; ++j)
@@ -488,14 +514,15 @@ TriangleMesh tessellateWalk(const LatticeWalk& walk) {
   resizeLarge(out.normalIndices, out.triangles.size());
   out.normalIndices = out.triangles;
   if (!walk.creased()) return out;
-  const auto numbered = [&](uint32_t p) { return out.normals[p]; };
+  const auto numbered = [&](size_t, size_t, uint32_t p) { return out.normals[p]; };
   const std::vector<size_t> extraBefore = countCreaseNormals(walk, numbered);
   if (extraBefore[n] == 0) return out;
   const size_t base = out.normals.size();
   out.normals.resize(base + extraBefore[n]);
-  writeCreaseNormals(
-      walk, extraBefore, numbered, 0, n, out.normalIndices.data(),
-      [&](size_t k, const LatticeWalk::CreaseNormal& c) { out.normals[base + k] = c.normal; });
+  writeCreaseNormals(walk, extraBefore, numbered, 0, n, out.normalIndices.data(),
+                     [&](size_t k, size_t, const LatticeWalk::CreaseNormal& c) {
+                       out.normals[base + k] = c.normal;
+                     });
   return out;
 }
 
@@ -522,7 +549,9 @@ size_t saveTessellation(const SurfaceModel& model, const Tessellation& requested
     return std::pair(b * blockPatches, std::min(n, (b + 1) * blockPatches));
   };
   // The normal (and position) a point was numbered with, evaluated again by its patch.
-  const auto numbered = [&](uint32_t p) { return walk.numberedPoint(p).second; };
+  const auto numbered = [&](size_t t, size_t i, uint32_t) {
+    return walk.numberedPoint(t, i).second;
+  };
   const std::vector<size_t> extraBefore =
       walk.creased() ? countCreaseNormals(walk, numbered) : std::vector<size_t>();
   MeshStream stream;
@@ -544,8 +573,8 @@ size_t saveTessellation(const SurfaceModel& model, const Tessellation& requested
     positions.resize(extraBefore[end] - extraBefore[begin]);
     normals.resize(positions.size());
     writeCreaseNormals(walk, extraBefore, numbered, begin, end, nullptr,
-                       [&](size_t k, const LatticeWalk::CreaseNormal& c) {
-                         positions[k] = walk.numberedPoint(c.point).first;
+                       [&](size_t k, size_t t, const LatticeWalk::CreaseNormal& c) {
+                         positions[k] = walk.numberedPoint(t, c.i).first;
                          normals[k] = c.normal;
                        });
   };
@@ -557,7 +586,7 @@ size_t saveTessellation(const SurfaceModel& model, const Tessellation& requested
     if (stream.extraNormals == 0) return;  // every corner's normal is its point's
     normalIndices = triangles;
     writeCreaseNormals(walk, extraBefore, numbered, begin, end, normalIndices.data(),
-                       [](size_t, const LatticeWalk::CreaseNormal&) {});
+                       [](size_t, size_t, const LatticeWalk::CreaseNormal&) {});
   };
   saveMeshStream(stream, path);
   return stream.triangles;
