@@ -41,9 +41,10 @@ CappedModelBytes streamBlockBytes(const Tessellation& t) {
   const double side = double(edgeSteps(highest) + 1);
   const double points =
       t.kind == Tessellation::Kind::ThesisGrid ? side * side : side * (side + 1.0) / 2.0;
-  // Triangles and, where creases give extra normals, their normal indices: 24 bytes each.
-  const double block = double(kTessellationBlockPoints) * (48.0 + 2.0 * 24.0) + 8 * 16384 * 80.0;
-  return {uint64_t(points * 48.0 + double(highest.trianglesPerPatch()) * 24.0), uint64_t(block)};
+  // Triangles and, where creases give extra normals, their normal indices (24 bytes each) and
+  // the extra normals with their points' positions (at most one per point: 48 bytes more).
+  const double block = double(kTessellationBlockPoints) * (96.0 + 2.0 * 24.0) + 8 * 16384 * 80.0;
+  return {uint64_t(points * 96.0 + double(highest.trianglesPerPatch()) * 24.0), uint64_t(block)};
 }
 
 }  // namespace
