@@ -15,6 +15,8 @@ namespace {
 // The input triangles written to OBJ/PLY, and a lattice triangle traced by Embree (its share
 // of vertices, the triangle, the BVH).
 constexpr double kInputTriangleMesh = 150, kLatticeTriangleRender = 170;
+// quadric-g1's pieces per triangle (G1Model: a Clough–Tocher split), each a region at least.
+constexpr double kG1PiecesPerTriangle = 3;
 
 // Steps along each edge of a patch's points (an Adaptive tessellation's lowest level, 1).
 int edgeSteps(const Tessellation& t) {
@@ -69,6 +71,9 @@ uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tesse
       return uint64_t(cost->inputTriangles ? kInputTriangleMesh
                                            : cost->streamed + walkBytes(tessellation));
     case ModelUse::Render:
+      // A region per piece whatever the budget (modelCappedBytes charges the rest).
+      if (cost->perRegion > 0)
+        return uint64_t(cost->traced + kG1PiecesPerTriangle * cost->perRegion);
       return uint64_t(cost->traced > 0 ? cost->traced : lattice * kLatticeTriangleRender);
   }
   return 0;
@@ -89,8 +94,10 @@ CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use,
   if (use == ModelUse::ConvertMeshStreamed && !cost->inputTriangles)
     return streamBlockBytes(tessellation);
   if (use != ModelUse::Render || cost->perRegion <= 0) return {};
-  // defaultSubPatchBudget's share per piece and its cap, on G1Model's three pieces per triangle.
-  return {uint64_t(double(3 * kSubPatchesPerPiece) * cost->perRegion),
+  // defaultSubPatchBudget's share per piece beyond the first region (charged per triangle: a
+  // piece is one region at least, also past the cap) and its cap, on G1Model's three pieces
+  // per triangle. Past the cap this charges up to the cap more than the pieces get.
+  return {uint64_t(kG1PiecesPerTriangle * double(kSubPatchesPerPiece - 1) * cost->perRegion),
           uint64_t(double(kMaxSubPatchBudget) * cost->perRegion)};
 }
 

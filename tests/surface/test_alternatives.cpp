@@ -501,24 +501,32 @@ TEST(ModelMemory, AutoTessellationIsChargedAtTheLevelItPicks) {
 }
 
 // quadric-g1's regions are charged as many as defaultSubPatchBudget gives its three pieces per
-// triangle, so a fine mesh is no longer charged regions it will not get; no other model has a
-// capped part, and nothing is capped but in rendering.
+// triangle, so a fine mesh is no longer charged regions it will not get, but never fewer than
+// one per piece, which a mesh past the cap still gets; no other model has a capped part, and
+// nothing is capped but in rendering.
 TEST(ModelMemory, G1RegionsAreChargedAsTheirBudgetCapsThem) {
   const Tessellation tess;
   const CappedModelBytes g1 = modelCappedBytes("quadric-g1", ModelUse::Render);
   ASSERT_GT(g1.perTriangle, 0u);
   const double perRegion = double(g1.cap) / double(defaultSubPatchBudget(size_t(1) << 40));
-  for (const uint64_t triangles : {uint64_t(81920), uint64_t(174762), uint64_t(1000000)}) {
+  for (const uint64_t triangles :
+       {uint64_t(81920), uint64_t(87381), uint64_t(174762), uint64_t(1000000)}) {
     SCOPED_TRACE(triangles);
     MemoryBudget budget;
     setModelBytes(budget, "quadric-g1", tess, ModelUse::Render);
-    const double regions = double(defaultSubPatchBudget(3 * triangles));
-    const double expected =
-        double(triangles) * double(budget.bytesPerTriangle) + regions * perRegion;
-    EXPECT_NEAR(double(modelBytes(budget, triangles)), expected, 1e-9 * expected + 1.0);
+    // What it gets: the rest of the model per triangle, and max(one region per piece, the
+    // budget's regions).
+    const double rest = double(budget.bytesPerTriangle) - 3.0 * perRegion;
+    const double regions =
+        std::max(3.0 * double(triangles), double(defaultSubPatchBudget(3 * triangles)));
+    const double gets = double(triangles) * rest + regions * perRegion;
+    const double charged = double(modelBytes(budget, triangles));
+    // All of that, and at most the cap's regions more.
+    EXPECT_GE(charged, gets - 1e-9 * gets - 1.0);
+    EXPECT_LE(charged, gets + double(g1.cap) + 1.0);
   }
-  // Beyond 174,762 triangles the regions stop growing: a million triangles cost the same per
-  // triangle as the uncapped part, not 5 to 10 kB as the small meshes measured.
+  // Past the cap the regions grow only as the pieces: a million more triangles cost three
+  // regions each beside the rest, not the 24 of a small mesh.
   MemoryBudget budget;
   setModelBytes(budget, "quadric-g1", tess, ModelUse::Render);
   EXPECT_EQ(modelBytes(budget, 2000000) - modelBytes(budget, 1000000),

@@ -121,6 +121,14 @@ TEST(BezierSubPatch, RegionsTileEveryPiece) {
   const int most = *std::max_element(fewCount.begin(), fewCount.end());
   EXPECT_LT(least, 4);
   EXPECT_GT(most, 4);
+  // A budget below the pieces (a mesh past the cap) leaves each piece one region, itself whole,
+  // in piece order.
+  const std::vector<BezierSubPatch> whole = bezierSubPatches(pieces, 10.0, pieces.size() / 2);
+  ASSERT_EQ(whole.size(), pieces.size());
+  for (size_t i = 0; i < whole.size(); ++i) {
+    EXPECT_EQ(whole[i].piece, i);
+    EXPECT_EQ(whole[i].depth, 0);
+  }
   // The result is the same whatever the threads did, and on one thread.
   const std::vector<BezierSubPatch> again = [&] {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -500,8 +508,8 @@ TEST(BezierSubPatch, DefaultBudgetIsEightPerPieceBetweenItsFloorAndItsCap) {
   EXPECT_EQ(defaultSubPatchBudget(0), 65536u);
   EXPECT_EQ(defaultSubPatchBudget(8192), 65536u);
   EXPECT_EQ(defaultSubPatchBudget(17412), 8u * 17412u);  // the cow's pieces
-  EXPECT_EQ(defaultSubPatchBudget(524288), size_t(1) << 22);
-  EXPECT_EQ(defaultSubPatchBudget(3000000), size_t(1) << 22);  // a 1,000,000-triangle mesh
+  EXPECT_EQ(defaultSubPatchBudget(262144), size_t(1) << 21);
+  EXPECT_EQ(defaultSubPatchBudget(3000000), size_t(1) << 21);  // a 1,000,000-triangle mesh
 }
 
 }  // namespace
