@@ -496,6 +496,18 @@ std::vector<BezierSubPatch> bezierSubPatches(const std::vector<BezierTriangle>& 
   if (budget == 0) budget = defaultSubPatchBudget(pieces.size());
   const double sinMax = std::sin(coneDegrees * kPi / 180.0);
   const size_t n = pieces.size();
+  if (budget <= n) {
+    // No piece's share is more than itself, and nothing is left over (a mesh past the cap):
+    // each piece is one region, written in place, without the blocks' buffers, their copy
+    // into one array and the per-piece bookkeeping (at 3,000,000 pieces, 500 MB each).
+    const double whole[2][3] = {{0, 1, 0}, {0, 0, 1}};
+    std::vector<BezierSubPatch> out;
+    resizeLarge(out, n);
+    parallelFor(size_t(0), n, [&](size_t p) {
+      out[p] = makeSubPatch(pieces[p], uint32_t(p), 0, whole[0], whole[1]);
+    });
+    return out;
+  }
   // First an even share of the budget per piece; then what the pieces that needed less left
   // over goes to those that needed more, in proportion to their estimates, and they are split
   // again. Regions are gathered piece after piece and every sum is taken in piece order, so the

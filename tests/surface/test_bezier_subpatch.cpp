@@ -123,12 +123,33 @@ TEST(BezierSubPatch, RegionsTileEveryPiece) {
   EXPECT_GT(most, 4);
   // A budget below the pieces (a mesh past the cap) leaves each piece one region, itself whole,
   // in piece order.
+  // Each is the record the budgeted split gives a piece it leaves whole (with a cone so wide
+  // that only the boxes split some).
   const std::vector<BezierSubPatch> whole = bezierSubPatches(pieces, 10.0, pieces.size() / 2);
+  const std::vector<BezierSubPatch> wide = bezierSubPatches(pieces, 89.0, 8 * pieces.size());
   ASSERT_EQ(whole.size(), pieces.size());
+  size_t compared = 0;
   for (size_t i = 0; i < whole.size(); ++i) {
     EXPECT_EQ(whole[i].piece, i);
     EXPECT_EQ(whole[i].depth, 0);
   }
+  for (const BezierSubPatch& s : wide) {
+    if (s.depth != 0) continue;
+    ++compared;
+    const BezierSubPatch& w = whole[s.piece];
+    const auto same = [](const auto& a, const auto& b) {
+      return std::memcmp(&a, &b, sizeof(a)) == 0;
+    };
+    EXPECT_TRUE(same(s.p0, w.p0) && same(s.n, w.n) && same(s.g1, w.g1) && same(s.g2, w.g2) &&
+                same(s.hlo, w.hlo) && same(s.hhi, w.hhi) && same(s.lmin, w.lmin) &&
+                same(s.inverseSize, w.inverseSize) && same(s.axis, w.axis) &&
+                same(s.sinCone, w.sinCone) && same(s.parentAxis, w.parentAxis) &&
+                same(s.parentSinCone, w.parentSinCone) && same(s.lo, w.lo) && same(s.hi, w.hi) &&
+                same(s.cu, w.cu) && same(s.cv, w.cv) && same(s.parentU, w.parentU) &&
+                same(s.parentV, w.parentV))
+        << s.piece;
+  }
+  EXPECT_GT(compared, 0u);
   // The result is the same whatever the threads did, and on one thread.
   const std::vector<BezierSubPatch> again = [&] {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
