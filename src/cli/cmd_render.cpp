@@ -114,6 +114,9 @@ Action addRenderCommand(CLI::App& app) {
     request.maxMemoryBytes = memoryLimit;
     request.warn = [](const std::string& message) { fmt::print(stderr, "warning: {}\n", message); };
     request.note = [](const std::string& message) { fmt::print(stderr, "{}\n", message); };
+    // The fold and fallback warnings evaluate every corner of each model: run after the image,
+    // they do not hold back its first pixel.
+    request.deferModelChecks = true;
     // Time to first pixel counts from here: the scene's loading, conversion and acceleration
     // structure, then the render until its first pixel is finished.
     const auto commandStart = std::chrono::steady_clock::now();
@@ -166,6 +169,8 @@ Action addRenderCommand(CLI::App& app) {
             : std::to_string(options.samplesPerPixel),
         settings.threads > 0 ? fmt::format(", {} threads", settings.threads) : std::string());
     const RenderResult result = render(*built.scene, *built.integrator, options);
+    for (const ModelCheck& check : built.modelChecks)
+      if (const std::optional<std::string> warning = check()) request.warn(*warning);
     if (!result.checkpointError.empty())
       fmt::print(stderr, "warning: checkpoints stopped: {}\n", result.checkpointError);
     // An image that is not complete leaves its state behind to resume (saved before the

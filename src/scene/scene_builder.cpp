@@ -21,7 +21,8 @@ auto at(const std::string& location, const std::string& what, F&& build) {
 }  // namespace
 
 BuiltScene buildScene(const SceneDescription& description,
-                      const std::optional<std::string>& modelOverride, uint64_t maxMemoryBytes) {
+                      const std::optional<std::string>& modelOverride, uint64_t maxMemoryBytes,
+                      bool deferModelChecks) {
   MemoryBudget budget;
   budget.maxBytes = maxMemoryBytes;
   BuiltScene built;
@@ -87,7 +88,8 @@ BuiltScene buildScene(const SceneDescription& description,
                                 budget,
                                 built.inputTriangles,
                                 built.warnings,
-                                built.fileDigests};
+                                built.fileDigests,
+                                deferModelChecks ? &built.modelChecks : nullptr};
       s.params->build(context);
     });
   }

@@ -42,7 +42,8 @@ PreparedRender prepareSceneRender(const std::filesystem::path& file,
   }
   settings.applyTo(description);
   overrideNormals(description, request.normals, request.creaseAngleDegrees);
-  prepared.built = buildScene(description, settings.model, request.maxMemoryBytes);
+  prepared.built =
+      buildScene(description, settings.model, request.maxMemoryBytes, request.deferModelChecks);
   if (request.warn)
     for (const std::string& warning : prepared.built.warnings) request.warn(warning);
   RenderOptions& options = prepared.options;

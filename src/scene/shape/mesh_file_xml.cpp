@@ -37,9 +37,18 @@ void MeshFileShapeParams::build(ShapeBuildContext& context) const {
     context.warnings.push_back(std::move(*repaired));
   const std::shared_ptr<const SurfaceModel> converted =
       addMeshShape(context, std::move(mesh), chosen, tess);
-  if (std::optional<std::string> warning = conversionWarning(
-          *converted, fmt::format("{} {}", context.desc.location, filename.string())))
+  ModelCheck check = [converted,
+                      label = fmt::format("{} {}", context.desc.location, filename.string())] {
+    return conversionWarning(*converted, label);
+  };
+  // Deferred only where the scene keeps the model anyway (its patches or pieces are what it
+  // traces): holding a triangle-based model for its check would keep its mesh past the build.
+  const Representation kind = converted->representation();
+  if (context.modelChecks && (kind == Representation::Implicit || kind == Representation::Bezier)) {
+    context.modelChecks->push_back(std::move(check));
+  } else if (std::optional<std::string> warning = check()) {
     context.warnings.push_back(std::move(*warning));
+  }
 }
 
 std::shared_ptr<const SceneShapeParams> MeshFileShapeParams::withNormals(

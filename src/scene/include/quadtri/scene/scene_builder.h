@@ -22,6 +22,10 @@ struct BuiltScene {
   /// One line per obj/ply shape whose model folds or falls back more than the conversion
   /// warning allows (conversionWarning, corner_stats.h), naming the shape's element.
   std::vector<std::string> warnings;
+  /// With deferModelChecks, the model checks not yet run, one per obj/ply shape whose model
+  /// the scene keeps for its patches or pieces (the others are run into `warnings`, so their
+  /// models are not held past the build): each gives what `warnings` would have held for it.
+  std::vector<ModelCheck> modelChecks;
   /// The digest of every mesh file as its loader read it, for renderKeys (so that the render
   /// key does not read the files again).
   FileDigests fileDigests;
@@ -37,8 +41,10 @@ struct BuiltScene {
 /// (0: no limit), the image (renderImageBytes) and every mesh file with its model
 /// (loadMesh's MemoryBudget, modelBytesPerTriangle for rendering) are charged against it before
 /// they are built, and the first that would exceed it is refused with the estimate.
+/// With deferModelChecks, the model checks of the mesh shapes with implicit or Bézier models
+/// are left in BuiltScene::modelChecks instead of being run into BuiltScene::warnings.
 BuiltScene buildScene(const SceneDescription& description,
                       const std::optional<std::string>& modelOverride = std::nullopt,
-                      uint64_t maxMemoryBytes = 0);
+                      uint64_t maxMemoryBytes = 0, bool deferModelChecks = false);
 
 }  // namespace quadtri
