@@ -115,7 +115,7 @@ Action addRenderCommand(CLI::App& app) {
     request.warn = [](const std::string& message) { fmt::print(stderr, "warning: {}\n", message); };
     request.note = [](const std::string& message) { fmt::print(stderr, "{}\n", message); };
     // The fold and fallback warnings evaluate every corner of each model: run after the image,
-    // they do not hold back its first pixel.
+    // they do not hold back its first pixel (a render stopped before it starts prints none).
     request.deferModelChecks = true;
     // Time to first pixel counts from here: the scene's loading, conversion and acceleration
     // structure, then the render until its first pixel is finished.
@@ -169,8 +169,6 @@ Action addRenderCommand(CLI::App& app) {
             : std::to_string(options.samplesPerPixel),
         settings.threads > 0 ? fmt::format(", {} threads", settings.threads) : std::string());
     const RenderResult result = render(*built.scene, *built.integrator, options);
-    for (const ModelCheck& check : built.modelChecks)
-      if (const std::optional<std::string> warning = check()) request.warn(*warning);
     if (!result.checkpointError.empty())
       fmt::print(stderr, "warning: checkpoints stopped: {}\n", result.checkpointError);
     // An image that is not complete leaves its state behind to resume (saved before the
@@ -210,6 +208,16 @@ Action addRenderCommand(CLI::App& app) {
       std::error_code ignored;
       std::filesystem::remove(statePath, ignored);
     }
+    // The model checks left for after the image (deferModelChecks), once the images and the
+    // state are safe (a second signal meanwhile loses nothing), and without the acceleration
+    // structure, whose memory their buffers then take instead of adding to the peak.
+    const size_t primitives = built.scene->primitiveCount();
+    const size_t geometryBytes = built.scene->geometryBytes();
+    if (!built.modelChecks.empty()) {
+      prepared.built.scene.reset();
+      for (const ModelCheck& check : built.modelChecks)
+        if (const std::optional<std::string> warning = check()) request.warn(*warning);
+    }
     const RenderStats& s = result.stats;
     fmt::print("integrator      {}\n", built.integrator->toString());
     fmt::print("image           {}x{}, {:.1f} samples/pixel{}\n", result.image.width,
@@ -226,10 +234,8 @@ Action addRenderCommand(CLI::App& app) {
     fmt::print("samples         {}\n", s.samples);
     fmt::print("rays traced     {}\n", s.rays);
     fmt::print("rays/s          {:.3g}\n", s.seconds > 0 ? double(s.rays) / s.seconds : 0.0);
-    fmt::print("primitives      {} (from {} input triangles)\n", built.scene->primitiveCount(),
-               built.inputTriangles);
-    fmt::print("geometry memory {:.2f} MiB\n",
-               double(built.scene->geometryBytes()) / (1024.0 * 1024.0));
+    fmt::print("primitives      {} (from {} input triangles)\n", primitives, built.inputTriangles);
+    fmt::print("geometry memory {:.2f} MiB\n", double(geometryBytes) / (1024.0 * 1024.0));
     fmt::print("peak memory     {:.2f} MiB (resident)\n",
                double(peakResidentBytes()) / (1024.0 * 1024.0));
     if (s.nonFiniteSamples)

@@ -423,16 +423,19 @@ void chargeMemory(MemoryBudget& budget, uint64_t bytes, const std::string& name,
 
 uint64_t modelBytes(const MemoryBudget& budget, uint64_t triangles) {
   const uint64_t capped =
-      std::min(mulAdd(triangles, budget.cappedBytesPerTriangle), budget.cappedBytes);
+      std::min(std::max(mulAdd(triangles, budget.cappedBytesPerTriangle), budget.cappedFloorBytes),
+               budget.cappedBytes);
   return mulAdd(triangles, budget.bytesPerTriangle, capped);
 }
 
 std::string describeModelBytes(const MemoryBudget& budget) {
   std::string text = formatBytes(budget.bytesPerTriangle) + " per triangle";
   if (budget.cappedBytesPerTriangle > 0 && budget.cappedBytes > 0)
-    text +=
-        fmt::format(" and {} more per triangle up to {}",
-                    formatBytes(budget.cappedBytesPerTriangle), formatBytes(budget.cappedBytes));
+    text += fmt::format(
+        " and {} more per triangle{} up to {}", formatBytes(budget.cappedBytesPerTriangle),
+        budget.cappedFloorBytes > 0 ? ", at least " + formatBytes(budget.cappedFloorBytes) + ","
+                                    : std::string(),
+        formatBytes(budget.cappedBytes));
   return text;
 }
 

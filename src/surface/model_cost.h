@@ -19,8 +19,9 @@ struct ModelCost {
   double latticeMesh = 0;       ///< ConvertMesh: per lattice triangle of the tessellated surface
   /// Render, for quadric-g1: per ray-tracing region (a BezierSubPatch, its copy while the blocks
   /// of the build are joined, its Embree primitive and BVH share), of which a mesh has as many
-  /// as defaultSubPatchBudget gives its pieces. Beside it, `traced` is what does not grow with
-  /// the regions.
+  /// as defaultSubPatchBudget gives its pieces, and one per piece at least (past the budget's
+  /// cap, where the regions are written in place without the copy). Beside it, `traced` is
+  /// what does not grow with the regions.
   double perRegion = 0;
   /// ConvertMeshStreamed: the model itself beside the lattice walk and one block of the
   /// streamed surface (saveTessellation), measured as the slope of `convert icosphere:6|7 -o

@@ -88,6 +88,7 @@ CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use,
       const CappedModelBytes c = modelCappedBytes(name, use, tessellation);
       most.perTriangle = std::max(most.perTriangle, c.perTriangle);
       most.cap = std::max(most.cap, c.cap);
+      most.floor = std::max(most.floor, c.floor);
     }
     return most;
   }
@@ -97,8 +98,10 @@ CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use,
   // defaultSubPatchBudget's share per piece beyond the first region (charged per triangle: a
   // piece is one region at least, also past the cap) and its cap, on G1Model's three pieces
   // per triangle. Past the cap this charges up to the cap more than the pieces get.
+  // A small mesh gets the budget's floor (kMinSubPatchBudget regions) however few its pieces.
   return {uint64_t(kG1PiecesPerTriangle * double(kSubPatchesPerPiece - 1) * cost->perRegion),
-          uint64_t(double(kMaxSubPatchBudget) * cost->perRegion)};
+          uint64_t(double(kMaxSubPatchBudget) * cost->perRegion),
+          uint64_t(double(kMinSubPatchBudget) * cost->perRegion)};
 }
 
 void chargeResolvedTessellation(MemoryBudget& budget, std::string_view model,
@@ -119,10 +122,13 @@ void setModelBytes(MemoryBudget& budget, std::string_view model, const Tessellat
                    ModelUse use, bool dearest) {
   const uint64_t perTriangle = modelBytesPerTriangle(model, tessellation, use);
   const CappedModelBytes capped = modelCappedBytes(model, use, tessellation);
-  if (!dearest) budget.bytesPerTriangle = budget.cappedBytesPerTriangle = budget.cappedBytes = 0;
+  if (!dearest)
+    budget.bytesPerTriangle = budget.cappedBytesPerTriangle = budget.cappedBytes =
+        budget.cappedFloorBytes = 0;
   budget.bytesPerTriangle = std::max(budget.bytesPerTriangle, perTriangle);
   budget.cappedBytesPerTriangle = std::max(budget.cappedBytesPerTriangle, capped.perTriangle);
   budget.cappedBytes = std::max(budget.cappedBytes, capped.cap);
+  budget.cappedFloorBytes = std::max(budget.cappedFloorBytes, capped.floor);
 }
 
 }  // namespace quadtri

@@ -490,6 +490,18 @@ TEST(MeshIoCheck, CappedModelBytesStopGrowingAtTheirCap) {
   tight.maxBytes -= 1;
   expectContains(refusal([&] { loadMeshSpec("icosphere:3", NormalSource::File, &tight); }),
                  {"icosphere:3", "more per triangle up to"});
+  // A floor: a mesh of few triangles is charged it, one past it its per-triangle bytes.
+  MemoryBudget floored;
+  floored.bytesPerTriangle = 100;
+  floored.cappedBytesPerTriangle = 50;
+  floored.cappedBytes = 5000;
+  floored.cappedFloorBytes = 2000;
+  EXPECT_EQ(modelBytes(floored, 0), 2000u);
+  EXPECT_EQ(modelBytes(floored, 10), 10u * 100u + 2000u);
+  EXPECT_EQ(modelBytes(floored, 60), 60u * 150u);
+  EXPECT_EQ(modelBytes(floored, 1000), 1000u * 100u + 5000u);
+  expectContains(describeModelBytes(floored), {formatBytes(50) + " more per triangle, at least " +
+                                               formatBytes(2000) + ", up to " + formatBytes(5000)});
 }
 
 TEST(MemoryLimit, ByteSizes) {

@@ -509,8 +509,8 @@ TEST(ModelMemory, G1RegionsAreChargedAsTheirBudgetCapsThem) {
   const CappedModelBytes g1 = modelCappedBytes("quadric-g1", ModelUse::Render);
   ASSERT_GT(g1.perTriangle, 0u);
   const double perRegion = double(g1.cap) / double(defaultSubPatchBudget(size_t(1) << 40));
-  for (const uint64_t triangles :
-       {uint64_t(81920), uint64_t(87381), uint64_t(174762), uint64_t(1000000)}) {
+  for (const uint64_t triangles : {uint64_t(20), uint64_t(1000), uint64_t(81920), uint64_t(87381),
+                                   uint64_t(174762), uint64_t(1000000)}) {
     SCOPED_TRACE(triangles);
     MemoryBudget budget;
     setModelBytes(budget, "quadric-g1", tess, ModelUse::Render);
@@ -521,7 +521,8 @@ TEST(ModelMemory, G1RegionsAreChargedAsTheirBudgetCapsThem) {
         std::max(3.0 * double(triangles), double(defaultSubPatchBudget(3 * triangles)));
     const double gets = double(triangles) * rest + regions * perRegion;
     const double charged = double(modelBytes(budget, triangles));
-    // All of that, and at most the cap's regions more.
+    // All of that (a small mesh gets the budget's floor of 65,536 regions), and at most the
+    // cap's regions more.
     EXPECT_GE(charged, gets - 1e-9 * gets - 1.0);
     EXPECT_LE(charged, gets + double(g1.cap) + 1.0);
   }

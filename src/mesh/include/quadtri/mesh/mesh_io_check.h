@@ -50,19 +50,21 @@ struct MemoryBudget {
   uint64_t maxBytes = 0;          ///< 0: no limit
   uint64_t bytesPerTriangle = 0;  ///< what the caller builds per input triangle (its model)
   /// What the caller builds that grows with the triangles only up to a cap (the regions that
-  /// quadric-g1 traces, whose count is capped): this much per triangle, at most cappedBytes per
-  /// mesh (0: nothing capped).
-  uint64_t cappedBytesPerTriangle = 0, cappedBytes = 0;
+  /// quadric-g1 traces, whose count is capped): this much per triangle, at least
+  /// cappedFloorBytes and at most cappedBytes per mesh (0: nothing capped).
+  uint64_t cappedBytesPerTriangle = 0, cappedBytes = 0, cappedFloorBytes = 0;
   uint64_t usedBytes = 0;               ///< charged so far
   std::string option = "--max-memory";  ///< how the limit is named in errors
 };
 
 /// What the caller builds for one mesh of `triangles` triangles (saturating, never wrapping):
-/// bytesPerTriangle per triangle, and cappedBytesPerTriangle more per triangle up to cappedBytes.
+/// bytesPerTriangle per triangle, and cappedBytesPerTriangle more per triangle, at least
+/// cappedFloorBytes, up to cappedBytes.
 uint64_t modelBytes(const MemoryBudget& budget, uint64_t triangles);
 
 /// How modelBytes is made up, for errors: "N per triangle" and, where something is capped,
-/// " and M more per triangle up to C".
+/// " and M more per triangle up to C" (" and M more per triangle, at least F, up to C" with a
+/// floor).
 std::string describeModelBytes(const MemoryBudget& budget);
 
 /// Charges `bytes` (described by `what`, e.g. "loading and converting 12 triangles") for

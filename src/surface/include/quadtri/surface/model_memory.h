@@ -35,6 +35,7 @@ uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tesse
 struct CappedModelBytes {
   uint64_t perTriangle = 0;  ///< while below the cap
   uint64_t cap = 0;          ///< per mesh
+  uint64_t floor = 0;        ///< per mesh, however few its triangles
 };
 CappedModelBytes modelCappedBytes(std::string_view model, ModelUse use,
                                   const Tessellation& tessellation = {});
