@@ -2,6 +2,7 @@
 
 #include "quadtri/geometry/model_geometry.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/parallel.h"
 #include "quadtri/render/emitter/constant_emitter.h"
 #include "quadtri/render/emitter/mesh_area_emitter.h"
 #include "quadtri/render/emitter/point_emitter.h"
@@ -48,7 +49,17 @@ uint32_t RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
   if (geometry.bezier) {
     record.normals = GeometryRecord::Normals::Surface;
     record.bezier = geometry.bezier;
-    for (const BezierTriangle& piece : *geometry.bezier) bounds_.extend(piece.bounds());
+    bounds_.extend(parallelReduce(
+        tbb::blocked_range<size_t>(0, geometry.bezier->size(), 4096), Bounds3(),
+        [&](const tbb::blocked_range<size_t>& range, Bounds3 box) {
+          for (size_t i = range.begin(); i != range.end(); ++i)
+            box.extend((*geometry.bezier)[i].bounds());
+          return box;
+        },
+        [](Bounds3 a, const Bounds3& b) {
+          a.extend(b);
+          return a;
+        }));
     record.owner = model;
     return addRecord(std::move(record), addModelGeometry(accel_, geometry));
   }

@@ -331,6 +331,20 @@ TEST(Accel, BadBezierPiecesAreAnError) {
           << e.what();
     }
   }
+  // The pieces are scanned in parallel blocks: the error still names the first bad piece.
+  std::vector<BezierTriangle> many(
+      40000, fixtures::flatPiece(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
+  many[31000].b[2].x() = kInfinity;
+  many[9001].b[7].z() = std::nan("");
+  many[30000].b[0].y() = -kInfinity;
+  try {
+    accel.addBezierTriangles(many);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("Bézier piece 9001: a control point is not finite"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 ModelGeometry bezierGeometry(const std::vector<BezierTriangle>& pieces) {
