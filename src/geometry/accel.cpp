@@ -159,18 +159,46 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
 uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
   if (impl_->committed)
     fail("adding quadric patches: the acceleration structure is already committed");
-  double extent = 0.0;
-  for (size_t i = 0; i < patches.size(); ++i) {
-    const Bounds3& b = patches[i].bounds;
-    if (b.empty() || !allFinite(b.lo) || !allFinite(b.hi))
-      fail("quadric patch {}: its bounds are empty or not finite", i);
-    for (int32_t side : patches[i].joins)
-      if (patches[i].isBridge() &&
-          (side < 0 || size_t(side) >= patches.size() || patches[size_t(side)].isBridge()))
-        fail("quadric patch {}: a bridge must join two patches of the same geometry, not {}", i,
-             side);
-    extent = std::max({extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
-  }
+  // Checked in parallel blocks (a record each, 384 MB on a million triangles); the error names
+  // the first bad patch, as a scan in order would.
+  struct Scan {
+    size_t firstBad = SIZE_MAX;
+    int32_t badSide = 0;  // the side a bad bridge joins; 0 where the bounds are bad
+    bool badBounds = false;
+    double extent = 0.0;
+  };
+  const Scan scan = parallelReduce(
+      tbb::blocked_range<size_t>(0, patches.size(), 4096), Scan(),
+      [&](const tbb::blocked_range<size_t>& range, Scan s) {
+        for (size_t i = range.begin(); i != range.end() && i < s.firstBad; ++i) {
+          const Bounds3& b = patches[i].bounds;
+          if (b.empty() || !allFinite(b.lo) || !allFinite(b.hi)) {
+            s.firstBad = i, s.badBounds = true;
+            break;
+          }
+          for (int32_t side : patches[i].joins)
+            if (patches[i].isBridge() &&
+                (side < 0 || size_t(side) >= patches.size() || patches[size_t(side)].isBridge())) {
+              s.firstBad = i, s.badSide = side;
+              break;
+            }
+          if (s.firstBad == i) break;
+          s.extent = std::max({s.extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
+        }
+        return s;
+      },
+      [](Scan a, const Scan& b) {
+        if (b.firstBad < a.firstBad)
+          a.firstBad = b.firstBad, a.badSide = b.badSide, a.badBounds = b.badBounds;
+        a.extent = std::max(a.extent, b.extent);
+        return a;
+      });
+  if (scan.firstBad != SIZE_MAX && scan.badBounds)
+    fail("quadric patch {}: its bounds are empty or not finite", scan.firstBad);
+  if (scan.firstBad != SIZE_MAX)
+    fail("quadric patch {}: a bridge must join two patches of the same geometry, not {}",
+         scan.firstBad, scan.badSide);
+  const double extent = scan.extent;
   auto user = std::make_unique<accel_detail::PatchGeometry>();
   user->patches = &patches;
   user->margin = 1e-5 * extent;

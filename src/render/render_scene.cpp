@@ -69,7 +69,17 @@ uint32_t RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
            model->name());
     record.normals = GeometryRecord::Normals::Gradient;
     record.patches = geometry.patches;
-    for (const QuadricPatch& patch : *geometry.patches) bounds_.extend(patch.bounds);
+    bounds_.extend(parallelReduce(
+        tbb::blocked_range<size_t>(0, geometry.patches->size(), 4096), Bounds3(),
+        [&](const tbb::blocked_range<size_t>& range, Bounds3 box) {
+          for (size_t i = range.begin(); i != range.end(); ++i)
+            box.extend((*geometry.patches)[i].bounds);
+          return box;
+        },
+        [](Bounds3 a, const Bounds3& b) {
+          a.extend(b);
+          return a;
+        }));
     record.owner = model;
     return addRecord(std::move(record), addModelGeometry(accel_, geometry));
   }

@@ -266,6 +266,29 @@ TEST(Accel, MisuseIsAnError) {
   bad[0].bounds.extend(Vec3(0, 0, 0));
   bad[0].bounds.hi.x() = std::nan("");
   EXPECT_THROW(accel.addQuadricPatches(bad), Error);
+  // Among many patches (scanned in parallel blocks) the error names the first bad one, bad
+  // bounds or a bridge that joins nothing of its geometry.
+  std::vector<QuadricPatch> many(30000);
+  for (QuadricPatch& p : many) p.bounds.extend(Vec3(0, 0, 0)), p.bounds.extend(Vec3(1, 1, 1));
+  many[25000].bounds = Bounds3();
+  many[17000].joins = {5, 40000};
+  many[21000].bounds.lo.y() = kInfinity;
+  const auto message = [&] {
+    try {
+      accel.addQuadricPatches(many);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message().find("quadric patch 17000: a bridge must join two patches of the same "
+                           "geometry, not 40000"),
+            std::string::npos)
+      << message();
+  many[17000].joins = {-1, -1};
+  EXPECT_NE(message().find("quadric patch 21000: its bounds are empty or not finite"),
+            std::string::npos)
+      << message();
   accel.commit();
   EXPECT_THROW(accel.addTriangles(mesh), Error);  // already committed
   std::vector<RayHit> hits;
