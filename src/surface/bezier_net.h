@@ -1,6 +1,7 @@
-// Internals shared by bezier_intersect.cpp (the subdivision search of one piece) and
-// bezier_subpatch.cpp (the sub-patches that rendering traces): the nets' arithmetic, the
-// search's limits and its entry point. Private to the surface layer.
+// Internals shared by bezier_intersect.cpp (the subdivision search of one piece),
+// bezier_subpatch.cpp (the sub-patches that rendering traces) and bezier_regions.cpp (their
+// records and budget): the nets' arithmetic, the search's limits and its entry point. Private to
+// the surface layer.
 #pragma once
 
 #include <array>
@@ -98,6 +99,11 @@ inline void evaluateFromCubic(const P3* a, double u, double v, P3& p, P3& du, P3
   P3 b[6];
   casteljauStep(a, 3, Bary{1.0 - u - v, u, v}, b);
   evaluateFromQuadratic(b, u, v, p, du, dv);
+}
+
+// a · b for a direction stored in float (a BezierSubPatch's), in double.
+inline double dotf(const Vec3& a, const float* b) {
+  return a.x() * double(b[0]) + a.y() * double(b[1]) + a.z() * double(b[2]);
 }
 
 enum class Mode { Nearest, Any, All };

@@ -13,7 +13,7 @@ namespace {
 
 // As edgeControlPoint: negligible where the constraints meet at a real angle, decisive where a
 // direction is left free (a straight crease leaves the one along the edge free).
-constexpr double kDamping = 1e-7;
+constexpr double kCreaseDamping = 1e-7;
 
 // The end of an edge at position index v from its sides' unit corner normals there.
 EdgeEnd classifyEnd(const std::vector<Vec3>& normals, const Vec3& chord) {
@@ -186,7 +186,7 @@ Vec3 creaseControlPoint(const Vec3& vaIn, const EdgeEnd& eaIn, const Vec3& naIn,
   addEnd(ea, na, va);
   addEnd(eb, nb, vb);
   // The damping rows sit below the constraints; unused constraint rows stay zero.
-  A.bottomRows<3>() = kDamping * Mat3::Identity();
+  A.bottomRows<3>() = kCreaseDamping * Mat3::Identity();
   Vec3 delta;
   if (!householderLeastSquares(A, r, delta, 0.0)) delta.setConstant(std::nan(""));
   // Taken when b lies within half the chord of its midpoint and over its middle half, so that
