@@ -101,6 +101,14 @@ inline void evaluateFromCubic(const P3* a, double u, double v, P3& p, P3& du, P3
   evaluateFromQuadratic(b, u, v, p, du, dv);
 }
 
+// Newest-vertex bisection of a net: the edge opposite corner 0 split at its midpoint into
+// (m12, e0, e1) and (m12, e2, e0), the new vertex first (bezier_subdivide.cpp).
+void bisect(const Net& in, Net& a, Net& b);
+// Midpoint child m (0–2 at corners 0–2, 3 the middle) of a net, as childCorners places it.
+void child(const Net& in, int m, Net& out);
+// The net of the sub-triangle with corners (cu[m], cv[m]) in the net's (u, v).
+void regionNet(const Net& in, const double* cu, const double* cv, Net& out);
+
 // a · b for a direction stored in float (a BezierSubPatch's), in double.
 inline double dotf(const Vec3& a, const float* b) {
   return a.x() * double(b[0]) + a.y() * double(b[1]) + a.z() * double(b[2]);

@@ -6,7 +6,6 @@
 
 #include "model_cost.h"
 #include "quadtri/surface/bezier_intersect.h"
-#include "quadtri/surface/convert_output.h"
 #include "quadtri/surface/model.h"
 
 namespace quadtri {
