@@ -23,6 +23,21 @@ QuadricCoeffs coeffsFromMatrix(const Mat4& q) {
           2 * q(1, 2), 2 * q(0, 3), 2 * q(1, 3), 2 * q(2, 3), q(3, 3)};
 }
 
+// The box of every element's box (a million or more on a large mesh: in parallel).
+template <typename T, typename Box>
+Bounds3 boundsOf(const std::vector<T>& items, const Box& box) {
+  return parallelReduce(
+      tbb::blocked_range<size_t>(0, items.size(), 4096), Bounds3(),
+      [&](const tbb::blocked_range<size_t>& range, Bounds3 sum) {
+        for (size_t i = range.begin(); i != range.end(); ++i) sum.extend(box(items[i]));
+        return sum;
+      },
+      [](Bounds3 a, const Bounds3& b) {
+        a.extend(b);
+        return a;
+      });
+}
+
 }  // namespace
 
 RenderScene::RenderScene() = default;
@@ -49,17 +64,8 @@ uint32_t RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
   if (geometry.bezier) {
     record.normals = GeometryRecord::Normals::Surface;
     record.bezier = geometry.bezier;
-    bounds_.extend(parallelReduce(
-        tbb::blocked_range<size_t>(0, geometry.bezier->size(), 4096), Bounds3(),
-        [&](const tbb::blocked_range<size_t>& range, Bounds3 box) {
-          for (size_t i = range.begin(); i != range.end(); ++i)
-            box.extend((*geometry.bezier)[i].bounds());
-          return box;
-        },
-        [](Bounds3 a, const Bounds3& b) {
-          a.extend(b);
-          return a;
-        }));
+    bounds_.extend(
+        boundsOf(*geometry.bezier, [](const BezierTriangle& piece) { return piece.bounds(); }));
     record.owner = model;
     return addRecord(std::move(record), addModelGeometry(accel_, geometry));
   }
@@ -69,17 +75,8 @@ uint32_t RenderScene::addModel(std::shared_ptr<const SurfaceModel> model,
            model->name());
     record.normals = GeometryRecord::Normals::Gradient;
     record.patches = geometry.patches;
-    bounds_.extend(parallelReduce(
-        tbb::blocked_range<size_t>(0, geometry.patches->size(), 4096), Bounds3(),
-        [&](const tbb::blocked_range<size_t>& range, Bounds3 box) {
-          for (size_t i = range.begin(); i != range.end(); ++i)
-            box.extend((*geometry.patches)[i].bounds);
-          return box;
-        },
-        [](Bounds3 a, const Bounds3& b) {
-          a.extend(b);
-          return a;
-        }));
+    bounds_.extend(
+        boundsOf(*geometry.patches, [](const QuadricPatch& patch) { return patch.bounds; }));
     record.owner = model;
     return addRecord(std::move(record), addModelGeometry(accel_, geometry));
   }
