@@ -8,6 +8,45 @@
 
 namespace quadtri {
 
+namespace least_squares_detail {
+
+// Column J's reflection (householderLeastSquares), J a constant so that every loop below has
+// fixed bounds and unrolls: the same operations in the same order as a loop over J would do.
+template <int J, int R, int C>
+inline void reflectColumn(Eigen::Matrix<double, R, C>& A, Eigen::Matrix<double, R, 1>& b,
+                          double* diagonal) {
+  if constexpr (J < C) {
+    double norm2 = 0.0;
+    for (int i = J; i < R; ++i) norm2 += A(i, J) * A(i, J);
+    const double norm = std::sqrt(norm2);
+    if (!(norm > 0.0)) {
+      diagonal[J] = 0.0;
+    } else {
+      // Reflect column J onto alpha e_J, alpha of the sign opposite to A(J, J) (no
+      // cancellation): v = A(J.., J) − alpha e_J, H = I − 2 v vᵀ / vᵀv,
+      // vᵀv = 2 norm (norm + |A(J, J)|).
+      const double alpha = A(J, J) > 0.0 ? -norm : norm;
+      A(J, J) -= alpha;
+      const double vv = 2.0 * norm * (norm + std::abs(A(J, J) + alpha));
+      const double twoOverVv = 2.0 / vv;  // one division per column, not one per column reflected
+      for (int k = J + 1; k < C; ++k) {
+        double s = 0.0;
+        for (int i = J; i < R; ++i) s += A(i, J) * A(i, k);
+        const double f = s * twoOverVv;
+        for (int i = J; i < R; ++i) A(i, k) -= f * A(i, J);
+      }
+      double s = 0.0;
+      for (int i = J; i < R; ++i) s += A(i, J) * b[i];
+      const double f = s * twoOverVv;
+      for (int i = J; i < R; ++i) b[i] -= f * A(i, J);
+      diagonal[J] = alpha;
+    }
+    reflectColumn<J + 1>(A, b, diagonal);
+  }
+}
+
+}  // namespace least_squares_detail
+
 /// The least-squares solution x of A x = b for R ≥ C by Householder QR (unpivoted), in place on
 /// copies of A and b. Returns false, leaving x unset, when the columns are not independent
 /// enough: the smallest |R_jj| is at most `rankTolerance` times the largest (the caller then
@@ -17,32 +56,7 @@ bool householderLeastSquares(Eigen::Matrix<double, R, C> A, Eigen::Matrix<double
                              Eigen::Matrix<double, C, 1>& x, double rankTolerance) {
   static_assert(R >= C, "an overdetermined or square system");
   double diagonal[C];
-  for (int j = 0; j < C; ++j) {
-    double norm2 = 0.0;
-    for (int i = j; i < R; ++i) norm2 += A(i, j) * A(i, j);
-    const double norm = std::sqrt(norm2);
-    if (!(norm > 0.0)) {
-      diagonal[j] = 0.0;
-      continue;
-    }
-    // Reflect column j onto alpha e_j, alpha of the sign opposite to A(j, j) (no cancellation):
-    // v = A(j.., j) − alpha e_j, H = I − 2 v vᵀ / vᵀv, vᵀv = 2 norm (norm + |A(j, j)|).
-    const double alpha = A(j, j) > 0.0 ? -norm : norm;
-    A(j, j) -= alpha;
-    const double vv = 2.0 * norm * (norm + std::abs(A(j, j) + alpha));
-    const double twoOverVv = 2.0 / vv;  // one division per column, not one per column it reflects
-    for (int k = j + 1; k < C; ++k) {
-      double s = 0.0;
-      for (int i = j; i < R; ++i) s += A(i, j) * A(i, k);
-      const double f = s * twoOverVv;
-      for (int i = j; i < R; ++i) A(i, k) -= f * A(i, j);
-    }
-    double s = 0.0;
-    for (int i = j; i < R; ++i) s += A(i, j) * b[i];
-    const double f = s * twoOverVv;
-    for (int i = j; i < R; ++i) b[i] -= f * A(i, j);
-    diagonal[j] = alpha;
-  }
+  least_squares_detail::reflectColumn<0>(A, b, diagonal);
   double largest = 0.0, smallest = INFINITY;
   for (double d : diagonal) {
     largest = std::max(largest, std::abs(d));
