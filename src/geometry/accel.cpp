@@ -20,6 +20,12 @@ namespace {
 // A Bézier piece within this share of its box's diagonal of its corner triangle is traced as
 // that triangle (far below what a float hit resolves).
 constexpr double kFlatPieceTolerance = 1e-12;
+// Embree's share of a user-geometry primitive: its build reference and its part of the BVH's
+// nodes and leaves (charged for the parts of long patches, which the measured per-triangle
+// costs leave out).
+constexpr size_t kUserPrimitiveBytes = 128;
+
+// Embree reports errors through a callback from inside its C API, on the thread whose call
 // failed; throwing across it is not allowed, so each thread keeps its first message until
 // Accel::Impl::check() throws it once the call has returned.
 thread_local std::string embreeError;
@@ -49,7 +55,7 @@ struct Accel::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   bool committed = false;
-  size_t bytes = 0;
+  size_t bytes = 0, partBytes = 0;
   std::vector<std::unique_ptr<accel_detail::PatchGeometry>>
       patchGeometries;  // stable user pointers
   std::vector<std::unique_ptr<accel_detail::BezierGeometry>> bezierGeometries;
@@ -156,7 +162,8 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
   return id;
 }
 
-uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
+uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
+                                  const TriangleMesh* mesh) {
   if (impl_->committed)
     fail("adding quadric patches: the acceleration structure is already committed");
   // Checked in parallel blocks (a record each, 384 MB on a million triangles); the error names
@@ -202,11 +209,19 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches) {
   auto user = std::make_unique<accel_detail::PatchGeometry>();
   user->patches = &patches;
   user->margin = 1e-5 * extent;
+  // Collecting every hit needs each root once: those structures trace patches whole.
+  if (mesh && !impl_->options.collectHits) user->parts = quadricPatchParts(patches, *mesh);
+  const size_t primitives = user->parts.empty() ? patches.size() : user->parts.size();
   const uint32_t id = impl_->attachUserGeometry(
-      patches.size(), user.get(), &accel_detail::patchBounds, &accel_detail::intersectPatch,
+      primitives, user.get(), &accel_detail::patchBounds, &accel_detail::intersectPatch,
       &accel_detail::occludedPatch, "attaching the quadric patches");
+  const size_t partBytes = user->parts.empty()
+                               ? 0
+                               : user->parts.size() * sizeof(QuadricPatchPart) +
+                                     (user->parts.size() - patches.size()) * kUserPrimitiveBytes;
+  impl_->bytes += patches.size() * sizeof(QuadricPatch) + partBytes;
+  impl_->partBytes += partBytes;
   impl_->patchGeometries.push_back(std::move(user));
-  impl_->bytes += patches.size() * sizeof(QuadricPatch);
   return id;
 }
 
@@ -368,6 +383,10 @@ void Accel::allHits(const Ray& ray, std::vector<RayHit>& hits) const {
 
 size_t Accel::geometryBytes() const {
   return impl_->bytes;
+}
+
+size_t Accel::patchPartBytes() const {
+  return impl_->partBytes;
 }
 
 Bounds3 Accel::bounds() const {

@@ -69,7 +69,9 @@ void writeBounds(const Bounds3& b, double margin, RTCBounds* o) {
 void patchBounds(const RTCBoundsFunctionArguments* args) {
   acquireEdge(args->geometryUserPtr);  // Accel::commit's release (ThreadSanitizer)
   const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
-  writeBounds((*g->patches)[args->primID].bounds, g->margin, args->bounds_o);
+  writeBounds(
+      g->parts.empty() ? (*g->patches)[args->primID].bounds : g->parts[args->primID].bounds(),
+      g->margin, args->bounds_o);
   releaseEdge(&g->margin);
 }
 
@@ -78,8 +80,8 @@ void intersectPatch(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto* ctx = reinterpret_cast<TraceContext*>(args->context);
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const std::vector<QuadricPatch>& patches =
-      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
+  const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
+  const std::vector<QuadricPatch>& patches = *g->patches;
   if (ctx->hits) return collectPatchHits(patches, *ctx, args->geomID, args->primID);
   // While a patch is the nearest hit (or nothing is: both ids are then invalid and patchT is
   // the ray's tfar) its exact t bounds the search; after a triangle took over, its float t does.
@@ -88,17 +90,26 @@ void intersectPatch(const RTCIntersectFunctionNArguments* args) {
   const double tmax =
       patchIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
   double t;
-  if (!intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                          tmax, t))
-    return;
+  unsigned primitive = args->primID;
+  if (g->parts.empty()) {
+    if (!intersectPrimitive(patches, primitive, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                            tmax, t))
+      return;
+  } else {
+    const QuadricPatchPart& part = g->parts[primitive];
+    primitive = part.patch;
+    if (!intersectPrimitiveWithin(patches, primitive, part.bounds(), ctx->ray->origin,
+                                  ctx->ray->direction, ctx->tnear, tmax, t))
+      return;
+  }
   ctx->patchT = t;
   ctx->patchGeometry = args->geomID;
-  ctx->patchPrimitive = args->primID;
+  ctx->patchPrimitive = primitive;
   ctx->patches = &patches;
   ctx->pieces = nullptr;
   rayhit->ray.tfar = floatDown(t);
   rayhit->hit.geomID = args->geomID;
-  rayhit->hit.primID = args->primID;
+  rayhit->hit.primID = primitive;  // the patch's index, also for a part
   rayhit->hit.instID[0] = args->context->instID[0];
   rayhit->hit.u = rayhit->hit.v = 0.0f;
 }
@@ -107,12 +118,16 @@ void occludedPatch(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
   auto* ray = reinterpret_cast<RTCRay*>(args->ray);
-  const std::vector<QuadricPatch>& patches =
-      *static_cast<const PatchGeometry*>(args->geometryUserPtr)->patches;
+  const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
   double t;
-  if (intersectPrimitive(patches, args->primID, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
-                         ctx->ray->tfar, t))
-    ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
+  const bool hit =
+      g->parts.empty()
+          ? intersectPrimitive(*g->patches, args->primID, ctx->ray->origin, ctx->ray->direction,
+                               ctx->tnear, ctx->ray->tfar, t)
+          : intersectPrimitiveWithin(*g->patches, g->parts[args->primID].patch,
+                                     g->parts[args->primID].bounds(), ctx->ray->origin,
+                                     ctx->ray->direction, ctx->tnear, ctx->ray->tfar, t);
+  if (hit) ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
 }
 
 RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geometry,

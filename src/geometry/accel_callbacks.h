@@ -10,6 +10,7 @@
 
 #include "quadtri/geometry/accel.h"
 #include "quadtri/surface/bezier_intersect.h"
+#include "quadtri/surface/quadric_patch_parts.h"
 
 namespace quadtri::accel_detail {
 
@@ -17,9 +18,12 @@ constexpr unsigned kInvalidId = RTC_INVALID_GEOMETRY_ID;
 
 // What the patch callbacks need: the patches and how much to grow their bounds. The double ray
 // differs from Embree's float copy by about 6e-8 of the distance travelled, so boxes grow by
-// 1e-5 of the geometry's extent to never cull a hit of the double ray.
+// 1e-5 of the geometry's extent to never cull a hit of the double ray. Rendering structures
+// trace long patches as `parts` (quadric_patch_parts.h), when the mesh has any: primitive i is
+// then parts[i], its hits reported as its patch's. Otherwise primitive i is patch i.
 struct PatchGeometry {
   const std::vector<QuadricPatch>* patches = nullptr;
+  std::vector<QuadricPatchPart> parts;
   double margin = 0.0;
 };
 

@@ -61,7 +61,7 @@ ModelGeometry modelGeometry(const SurfaceModel& model, const Tessellation& tesse
 
 uint32_t addModelGeometry(Accel& accel, const ModelGeometry& geometry) {
   if (geometry.bezier) return accel.addBezierTriangles(*geometry.bezier);
-  return geometry.patches ? accel.addQuadricPatches(*geometry.patches)
+  return geometry.patches ? accel.addQuadricPatches(*geometry.patches, geometry.mesh)
                           : accel.addTriangles(geometry.triangles);
 }
 

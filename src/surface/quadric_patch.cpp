@@ -109,6 +109,19 @@ bool intersectPrimitive(const std::vector<QuadricPatch>& primitives, size_t inde
                      [&](const Vec3& p) { return bridgeCovers(primitives, patch, p); });
 }
 
+bool intersectPrimitiveWithin(const std::vector<QuadricPatch>& primitives, size_t index,
+                              const Bounds3& within, const Vec3& o, const Vec3& d, double tmin,
+                              double tmax, double& tHit) {
+  const QuadricPatch& patch = primitives[index];
+  const auto inside = [&](const Vec3& p) {
+    return (p.array() >= within.lo.array()).all() && (p.array() <= within.hi.array()).all();
+  };
+  if (!patch.isBridge()) return nearestRoot(patch, o, d, tmin, tmax, tHit, inside);
+  return nearestRoot(patch, o, d, tmin, tmax, tHit, [&](const Vec3& p) {
+    return inside(p) && bridgeCovers(primitives, patch, p);
+  });
+}
+
 Vec3 primitiveNormal(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& p) {
   const QuadricPatch& patch = primitives[index];
   const Vec3 g = patch.orientation * quadricGradient(patch.q, p);

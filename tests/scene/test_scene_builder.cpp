@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "fixtures/twisted_band.h"
 #include "quadtri/math/error.h"
 #include "quadtri/mesh/mesh_io.h"
 #include "quadtri/mesh/shapes.h"
@@ -251,6 +252,42 @@ TEST(SceneBuilder, ErrorsNameTheXmlLine) {
       errorOf(std::string(kSensor) +
               "\n<shape type=\"obj\"><string name=\"filename\" value=\"nope.obj\"/></shape>");
   EXPECT_NE(missing.find("test.xml:6"), std::string::npos) << missing;
+}
+
+TEST(SceneBuilder, ChargesTheLongPatchesTracedInPartsLast) {
+  // A band of slivers under quadric-implicit is traced in parts (quadric_patch_parts.h), which
+  // the model's per-triangle charge leaves out: they are charged once built, last. The least
+  // --max-memory that builds the scene is found by bisection; a byte less is refused, naming
+  // the parts.
+  const auto dir = std::filesystem::temp_directory_path() / "quadtri_scene_builder_parts";
+  std::filesystem::create_directories(dir);
+  saveMesh(fixtures::twistedBand(24, 6, 3.0), dir / "band.ply");
+  const std::string xml = "<scene version=\"3.0.0\">" + std::string(kSensor) + R"(
+    <shape type="ply"><string name="filename" value="band.ply"/><string name="model" value="quadric-implicit"/></shape></scene>)";
+  const auto buildWithin = [&](uint64_t bytes) {
+    return buildScene(parseSceneDescription(xml, dir / "s.xml"), std::nullopt, bytes);
+  };
+  const BuiltScene unlimited = buildWithin(0);
+  ASSERT_GT(unlimited.scene->patchPartBytes(), 0u);
+  uint64_t refused = 1, built = uint64_t(1) << 32;
+  while (built - refused > 1) {
+    const uint64_t middle = refused + (built - refused) / 2;
+    try {
+      buildWithin(middle);
+      built = middle;
+    } catch (const Error&) {
+      refused = middle;
+    }
+  }
+  std::string message;
+  try {
+    buildWithin(refused);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("tracing its long patches in parts needs about "), std::string::npos)
+      << message;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

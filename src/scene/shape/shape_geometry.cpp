@@ -1,5 +1,6 @@
 #include "shape_geometry.h"
 
+#include "quadtri/mesh/mesh_io_check.h"
 #include "quadtri/render/render_scene.h"
 #include "quadtri/scene/scene_description.h"
 #include "quadtri/surface/model.h"
@@ -31,9 +32,15 @@ std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, Tri
   std::shared_ptr<const SurfaceModel> converted =
       makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
   const Tessellation resolved = renderTessellation(*converted, tessellation);
+  const std::string name = fmt::format("{} ({})", desc.location, model);
   chargeResolvedTessellation(context.budget, model, tessellation, resolved, ModelUse::Render,
-                             converted->patchCount(), fmt::format("{} ({})", desc.location, model));
+                             converted->patchCount(), name);
+  // Long patches traced as parts (quadric_patch_parts.h) cost more than the model's
+  // per-triangle charge, measured on meshes without them: charged once their count is known.
+  const size_t partsBefore = context.scene.patchPartBytes();
   context.scene.addModel(converted, resolved, context.bsdf, desc.areaRadiance, context.name);
+  if (const size_t parts = context.scene.patchPartBytes() - partsBefore)
+    chargeMemory(context.budget, parts, name, "tracing its long patches in parts");
   return converted;
 }
 

@@ -54,8 +54,12 @@ class Accel {
   /// Adds a triangle mesh (copied into float buffers); returns its geometry id.
   uint32_t addTriangles(const TriangleMesh& mesh);
   /// Adds quadric patches as one Embree user geometry with a bound per patch; the patches are
-  /// referenced, not copied, and must outlive the Accel. Returns its geometry id.
-  uint32_t addQuadricPatches(const std::vector<QuadricPatch>& patches);
+  /// referenced, not copied, and must outlive the Accel. Given the `mesh` whose triangle t
+  /// patch t stands for, a rendering structure (not Options.collectHits) traces the patches
+  /// whose boxes are long against their triangles as parts with tighter boxes
+  /// (quadricPatchParts); a hit's primitive is still its patch's index. Returns its geometry id.
+  uint32_t addQuadricPatches(const std::vector<QuadricPatch>& patches,
+                             const TriangleMesh* mesh = nullptr);
   /// Adds Bézier pieces as one Embree user geometry, intersected in double precision
   /// (bezier_intersect.h); referenced like the patches. Its primitives are the pieces'
   /// sub-patches (bezierSubPatches), each bounded by its control points, or, with
@@ -78,6 +82,9 @@ class Accel {
 
   /// Bytes of geometry buffers and patch records handed to Embree.
   size_t geometryBytes() const;
+  /// What tracing long patches as parts (addQuadricPatches) costs: the parts' records and
+  /// Embree's share of each primitive beyond the patches. Zero where no patch was split.
+  size_t patchPartBytes() const;
   /// Bounds of everything added, as Embree holds it (floats, patch bounds slightly inflated).
   Bounds3 bounds() const;
   bool robust() const;

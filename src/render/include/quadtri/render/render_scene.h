@@ -101,6 +101,8 @@ class RenderScene {
   const Emitter* environment() const { return environment_; }
   size_t primitiveCount() const { return primitives_; }
   size_t geometryBytes() const { return accel_.geometryBytes(); }
+  /// Accel::patchPartBytes: what tracing long patches as parts took.
+  size_t patchPartBytes() const { return accel_.patchPartBytes(); }
   const Bounds3& bounds() const { return bounds_; }
 
  private:

@@ -100,6 +100,12 @@ bool bridgeCovers(const std::vector<QuadricPatch>& primitives, const QuadricPatc
 bool intersectPrimitive(const std::vector<QuadricPatch>& primitives, size_t index, const Vec3& o,
                         const Vec3& d, double tmin, double tmax, double& tHit);
 
+/// intersectPrimitive for a part of a primitive (quadric_patch_parts.h): its nearest root that
+/// also lies in the closed box `within`.
+bool intersectPrimitiveWithin(const std::vector<QuadricPatch>& primitives, size_t index,
+                              const Bounds3& within, const Vec3& o, const Vec3& d, double tmin,
+                              double tmax, double& tHit);
+
 /// Unit outward normal of primitive `index` at p: the oriented gradient of a patch; for a bridge
 /// its plane's normal, pointing from the side inside the solid to the side outside. Zero where
 /// the gradient vanishes.

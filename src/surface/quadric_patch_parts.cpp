@@ -1,0 +1,180 @@
+#include "quadtri/surface/quadric_patch_parts.h"
+
+#include <array>
+#include <cmath>
+
+#include "quadtri/math/fixed_vector.h"
+#include "quadtri/math/float_round.h"
+#include "quadtri/math/parallel.h"
+#include "quadtri/surface/robust_cell.h"
+
+namespace quadtri {
+namespace {
+
+using PartBoxes = FixedVector<Bounds3, size_t(1) << kMaxPartDepth>;
+
+double boxArea(const Bounds3& b) {
+  const Vec3 d = b.diagonal();
+  return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
+}
+
+// The box of {x in box : inside every plane of the patch}: the polytope's vertices, as the
+// points where three of its planes meet inside all of them. Empty when none is found.
+Bounds3 clippedBoxBounds(const QuadricPatch& patch, const Bounds3& box) {
+  FixedVector<Vec4, QuadricPatch::kMaxPlanes + 6> planes;
+  for (int i = 0; i < patch.planeCount; ++i) planes.push_back(patch.planes[size_t(i)]);
+  planes.push_back(Vec4(1, 0, 0, -box.lo.x()));
+  planes.push_back(Vec4(-1, 0, 0, box.hi.x()));
+  planes.push_back(Vec4(0, 1, 0, -box.lo.y()));
+  planes.push_back(Vec4(0, -1, 0, box.hi.y()));
+  planes.push_back(Vec4(0, 0, 1, -box.lo.z()));
+  planes.push_back(Vec4(0, 0, -1, box.hi.z()));
+  const double scale = box.diagonal().maxCoeff() + box.center().cwiseAbs().maxCoeff();
+  const double tolerance = 1e-9 * scale;
+  Bounds3 out;
+  const size_t n = planes.size();
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      for (size_t k = j + 1; k < n; ++k) {
+        Mat3 m;
+        m.row(0) = planes[i].head<3>().transpose();
+        m.row(1) = planes[j].head<3>().transpose();
+        m.row(2) = planes[k].head<3>().transpose();
+        const double det = m.determinant();
+        if (!(std::abs(det) > 1e-12)) continue;
+        const Vec3 x = m.inverse() * Vec3(-planes[i][3], -planes[j][3], -planes[k][3]);
+        bool inside = allFinite(x);
+        for (size_t l = 0; inside && l < n; ++l)
+          inside = planes[l].head<3>().dot(x) + planes[l][3] >= -tolerance;
+        if (inside) out.extend(x);
+      }
+  out.inflate(tolerance);
+  return out;
+}
+
+// Halves `box` while that pays (kPartSplitGain), each half's box tightened to the quadric in it;
+// the leaves go to `out`. Halves the quadric does not meet hold none of the patch and are left
+// out.
+void splitBox(const QuadricPatch& patch, const Bounds3& box, int depth, PartBoxes& out) {
+  if (depth < kMaxPartDepth) {
+    int axis = 0;
+    box.diagonal().maxCoeff(&axis);
+    const double middle = 0.5 * (box.lo[axis] + box.hi[axis]);
+    Bounds3 lower = box, upper = box;
+    lower.hi[axis] = middle;
+    upper.lo[axis] = middle;
+    Bounds3 a = quadricBoundsInBox(patch.q, lower), b = quadricBoundsInBox(patch.q, upper);
+    const Bounds3 pa = clippedBoxBounds(patch, lower), pb = clippedBoxBounds(patch, upper);
+    if (!pa.empty()) a.lo = a.lo.cwiseMax(pa.lo), a.hi = a.hi.cwiseMin(pa.hi);
+    if (!pb.empty()) b.lo = b.lo.cwiseMax(pb.lo), b.hi = b.hi.cwiseMin(pb.hi);
+    if (!(a.lo.array() <= a.hi.array()).all()) a = Bounds3();
+    if (!(b.lo.array() <= b.hi.array()).all()) b = Bounds3();
+    if (boxArea(a) + boxArea(b) <= kPartSplitGain * boxArea(box)) {
+      if (!a.empty()) splitBox(patch, a, depth + 1, out);
+      if (!b.empty()) splitBox(patch, b, depth + 1, out);
+      return;
+    }
+  }
+  out.push_back(box);
+}
+
+QuadricPatchPart partOf(const Bounds3& box, size_t patch) {
+  QuadricPatchPart part;
+  for (int c = 0; c < 3; ++c) {
+    part.lo[c] = floatDown(box.lo[c]);
+    part.hi[c] = floatUp(box.hi[c]);
+  }
+  part.patch = uint32_t(patch);
+  return part;
+}
+
+}  // namespace
+
+Bounds3 quadricBoundsInBox(const QuadricCoeffs& q, const Bounds3& box) {
+  if (box.empty()) return box;
+  const Vec3 size = box.diagonal();
+  const double scale = size.maxCoeff() + box.center().cwiseAbs().maxCoeff();
+  const double tolerance = 1e-10 * scale;
+  // The box as a cell: its six faces, unit normals pointing in.
+  const std::array<Vec4, 6> faces = {Vec4(1, 0, 0, -box.lo.x()), Vec4(-1, 0, 0, box.hi.x()),
+                                     Vec4(0, 1, 0, -box.lo.y()), Vec4(0, -1, 0, box.hi.y()),
+                                     Vec4(0, 0, 1, -box.lo.z()), Vec4(0, 0, -1, box.hi.z())};
+  const ConvexCell cell = makeConvexCell(faces, tolerance);
+  // A cell the construction could not complete (a box flat to within the tolerance) keeps the
+  // whole box: no part of the patch may be lost.
+  if (cell.overflowed || cell.empty()) return box;
+  Bounds3 tight = quadricBoundsInCell(q, cell);
+  if (tight.empty()) return tight;
+  if (!allFinite(tight.lo) || !allFinite(tight.hi)) return box;
+  tight.inflate(1e-9 * scale + tolerance);
+  tight.lo = tight.lo.cwiseMax(box.lo);
+  tight.hi = tight.hi.cwiseMin(box.hi);
+  return tight;
+}
+
+std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>& patches,
+                                                const TriangleMesh& mesh) {
+  const size_t n = patches.size(), triangles = mesh.triangleCount();
+  // The long patches, found in parallel; most meshes have few or none, and then nothing more
+  // is computed or stored.
+  std::vector<uint32_t> longPatches;
+  {
+    std::vector<uint8_t> isLong(n, 0);
+    const size_t count = parallelReduce(
+        tbb::blocked_range<size_t>(0, n, 4096), size_t(0),
+        [&](const tbb::blocked_range<size_t>& range, size_t found) {
+          for (size_t i = range.begin(); i != range.end(); ++i) {
+            if (i >= triangles || patches[i].isBridge()) continue;
+            const double area = 0.5 * mesh.faceCross(i).norm();
+            isLong[i] = boxArea(patches[i].bounds) > kLongPatchRatio * area;
+            found += isLong[i];
+          }
+          return found;
+        },
+        [](size_t a, size_t b) { return a + b; });
+    if (count == 0) return {};
+    longPatches.reserve(count);
+    for (size_t i = 0; i < n; ++i)
+      if (isLong[i]) longPatches.push_back(uint32_t(i));
+  }
+  std::vector<PartBoxes> boxes(longPatches.size());
+  parallelFor(size_t(0), longPatches.size(), [&](size_t i) {
+    const QuadricPatch& patch = patches[longPatches[i]];
+    splitBox(patch, patch.bounds, 0, boxes[i]);
+    // A quadric that meets no half of its box has no point the patch could show; keep the box
+    // all the same, so that rounding cannot take a root away.
+    if (boxes[i].empty()) boxes[i].push_back(patch.bounds);
+  });
+  size_t total = n - longPatches.size();
+  for (const PartBoxes& b : boxes) total += b.size();
+  // The boxes' total area, whole and split: what a ray's callbacks are in proportion to. A part
+  // costs a little more to test than a whole patch (its box is read and checked too), so a
+  // split that takes off less than kMeshSplitGain traces the patches whole.
+  const double whole = parallelReduce(
+      tbb::blocked_range<size_t>(0, n, 4096), 0.0,
+      [&](const tbb::blocked_range<size_t>& range, double sum) {
+        for (size_t i = range.begin(); i != range.end(); ++i) sum += boxArea(patches[i].bounds);
+        return sum;
+      },
+      [](double a, double b) { return a + b; });
+  double saved = 0.0;
+  for (size_t i = 0; i < longPatches.size(); ++i) {
+    saved += boxArea(patches[longPatches[i]].bounds);
+    for (const Bounds3& box : boxes[i]) saved -= boxArea(box);
+  }
+  if (total == n || !(saved > (1.0 - kMeshSplitGain) * whole)) return {};
+  std::vector<QuadricPatchPart> parts;
+  parts.reserve(total);
+  size_t next = 0;
+  for (size_t t = 0; t < n; ++t) {
+    if (next < longPatches.size() && longPatches[next] == t) {
+      for (const Bounds3& box : boxes[next]) parts.push_back(partOf(box, t));
+      ++next;
+    } else {
+      parts.push_back(partOf(patches[t].bounds, t));
+    }
+  }
+  return parts;
+}
+
+}  // namespace quadtri
