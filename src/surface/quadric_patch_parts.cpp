@@ -18,11 +18,52 @@ double boxArea(const Bounds3& b) {
   return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
 }
 
-// The box of {x in box : inside every plane of the patch}: the polytope's vertices, as the
-// points where three of its planes meet inside all of them. Empty when none is found.
-Bounds3 clippedBoxBounds(const QuadricPatch& patch, const Bounds3& box) {
-  FixedVector<Vec4, QuadricPatch::kMaxPlanes + 6> planes;
-  for (int i = 0; i < patch.planeCount; ++i) planes.push_back(patch.planes[size_t(i)]);
+// Planes bounding where a primitive's points can lie, besides its box (unit normals, inside
+// n·x + d >= 0).
+using PlaneList = FixedVector<Vec4, 2 * QuadricPatch::kMaxPlanes + 2>;
+// A primitive's points lie in the union of these polytopes (each cut from a box).
+using Polytopes = FixedVector<PlaneList, 2>;
+
+// Where primitive i's points can lie: a patch inside its planes. A bridge inside its own planes
+// and on its plane (a linear q, taken both ways); where it joins patches with cells
+// (joinPlanes), a point of it is between sheet and base on one side, so inside that side's
+// planes but the one it lies in (betweenSheetAndBase): one polytope per side.
+Polytopes polytopesOf(const std::vector<QuadricPatch>& patches, size_t i) {
+  const QuadricPatch& primitive = patches[i];
+  PlaneList own;
+  for (int k = 0; k < primitive.planeCount; ++k) own.push_back(primitive.planes[size_t(k)]);
+  Polytopes out;
+  if (!primitive.isBridge()) {
+    out.push_back(own);
+    return out;
+  }
+  const QuadricCoeffs& q = primitive.q;
+  const Vec3 n(q[6], q[7], q[8]);
+  const double length = n.norm();
+  const bool linear = q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0 && q[4] == 0 && q[5] == 0;
+  if (linear && length > 0.0 && std::isfinite(length)) {
+    const Vec4 plane = Vec4(n.x(), n.y(), n.z(), q[9]) / length;
+    own.push_back(plane);
+    own.push_back(-plane);
+  }
+  if (primitive.joinPlanes[0] < 0) {
+    out.push_back(own);
+    return out;
+  }
+  for (int side = 0; side < 2; ++side) {
+    const QuadricPatch& patch = patches[size_t(primitive.joins[size_t(side)])];
+    PlaneList planes = own;
+    for (int k = 0; k < patch.planeCount; ++k)
+      if (k != primitive.joinPlanes[size_t(side)]) planes.push_back(patch.planes[size_t(k)]);
+    out.push_back(planes);
+  }
+  return out;
+}
+
+// The box of {x in box : inside every plane}: the polytope's vertices, the points where three
+// of its planes meet inside all of them. Empty when none is found.
+Bounds3 clippedBoxBounds(const PlaneList& bounding, const Bounds3& box) {
+  FixedVector<Vec4, PlaneList::capacity() + 6> planes(bounding.begin(), bounding.end());
   planes.push_back(Vec4(1, 0, 0, -box.lo.x()));
   planes.push_back(Vec4(-1, 0, 0, box.hi.x()));
   planes.push_back(Vec4(0, 1, 0, -box.lo.y()));
@@ -52,10 +93,24 @@ Bounds3 clippedBoxBounds(const QuadricPatch& patch, const Bounds3& box) {
   return out;
 }
 
-// Halves `box` while that pays (kPartSplitGain), each half's box tightened to the quadric in it;
-// the leaves go to `out`. Halves the quadric does not meet hold none of the patch and are left
-// out.
-void splitBox(const QuadricPatch& patch, const Bounds3& box, int depth, PartBoxes& out) {
+// The bounds of a primitive's points inside `half`: of its quadric there, and of the polytopes
+// its points lie in, cut from the half. Empty where there are none; the quadric's bounds alone
+// where no polytope gave a vertex (none is lost to rounding).
+Bounds3 boundsInHalf(const QuadricCoeffs& q, const Polytopes& polytopes, const Bounds3& half) {
+  Bounds3 out = quadricBoundsInBox(q, half);
+  if (out.empty()) return out;
+  Bounds3 cut;
+  for (const PlaneList& planes : polytopes) cut.extend(clippedBoxBounds(planes, half));
+  if (cut.empty()) return out;
+  out.lo = out.lo.cwiseMax(cut.lo);
+  out.hi = out.hi.cwiseMin(cut.hi);
+  return (out.lo.array() <= out.hi.array()).all() ? out : Bounds3();
+}
+
+// Halves `box` while that pays (kPartSplitGain), each half's box tightened to the primitive's
+// points in it (boundsInHalf); the leaves go to `out`. Halves that hold none are left out.
+void splitBox(const QuadricCoeffs& q, const Polytopes& polytopes, const Bounds3& box, int depth,
+              PartBoxes& out) {
   if (depth < kMaxPartDepth) {
     int axis = 0;
     box.diagonal().maxCoeff(&axis);
@@ -63,15 +118,10 @@ void splitBox(const QuadricPatch& patch, const Bounds3& box, int depth, PartBoxe
     Bounds3 lower = box, upper = box;
     lower.hi[axis] = middle;
     upper.lo[axis] = middle;
-    Bounds3 a = quadricBoundsInBox(patch.q, lower), b = quadricBoundsInBox(patch.q, upper);
-    const Bounds3 pa = clippedBoxBounds(patch, lower), pb = clippedBoxBounds(patch, upper);
-    if (!pa.empty()) a.lo = a.lo.cwiseMax(pa.lo), a.hi = a.hi.cwiseMin(pa.hi);
-    if (!pb.empty()) b.lo = b.lo.cwiseMax(pb.lo), b.hi = b.hi.cwiseMin(pb.hi);
-    if (!(a.lo.array() <= a.hi.array()).all()) a = Bounds3();
-    if (!(b.lo.array() <= b.hi.array()).all()) b = Bounds3();
+    const Bounds3 a = boundsInHalf(q, polytopes, lower), b = boundsInHalf(q, polytopes, upper);
     if (boxArea(a) + boxArea(b) <= kPartSplitGain * boxArea(box)) {
-      if (!a.empty()) splitBox(patch, a, depth + 1, out);
-      if (!b.empty()) splitBox(patch, b, depth + 1, out);
+      if (!a.empty()) splitBox(q, polytopes, a, depth + 1, out);
+      if (!b.empty()) splitBox(q, polytopes, b, depth + 1, out);
       return;
     }
   }
@@ -124,8 +174,10 @@ std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>&
         tbb::blocked_range<size_t>(0, n, 4096), size_t(0),
         [&](const tbb::blocked_range<size_t>& range, size_t found) {
           for (size_t i = range.begin(); i != range.end(); ++i) {
-            if (i >= triangles || patches[i].isBridge()) continue;
-            const double area = 0.5 * mesh.faceCross(i).norm();
+            // A bridge against the triangle of its first patch.
+            const size_t t = patches[i].isBridge() ? size_t(patches[i].joins[0]) : i;
+            if (t >= triangles) continue;
+            const double area = 0.5 * mesh.faceCross(t).norm();
             isLong[i] = boxArea(patches[i].bounds) > kLongPatchRatio * area;
             found += isLong[i];
           }
@@ -140,7 +192,7 @@ std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>&
   std::vector<PartBoxes> boxes(longPatches.size());
   parallelFor(size_t(0), longPatches.size(), [&](size_t i) {
     const QuadricPatch& patch = patches[longPatches[i]];
-    splitBox(patch, patch.bounds, 0, boxes[i]);
+    splitBox(patch.q, polytopesOf(patches, longPatches[i]), patch.bounds, 0, boxes[i]);
     // A quadric that meets no half of its box has no point the patch could show; keep the box
     // all the same, so that rounding cannot take a root away.
     if (boxes[i].empty()) boxes[i].push_back(patch.bounds);
