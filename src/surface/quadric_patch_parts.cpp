@@ -46,7 +46,8 @@ Polytopes polytopesOf(const std::vector<QuadricPatch>& patches, size_t i) {
     own.push_back(plane);
     own.push_back(-plane);
   }
-  if (primitive.joinPlanes[0] < 0) {
+  const auto valid = [&](int32_t join) { return join >= 0 && size_t(join) < patches.size(); };
+  if (primitive.joinPlanes[0] < 0 || !valid(primitive.joins[0]) || !valid(primitive.joins[1])) {
     out.push_back(own);
     return out;
   }

@@ -3,7 +3,7 @@
 // times the area of its triangle: most rays that enter the box miss the patch, and every one of
 // them costs a callback and a quadratic solve. On the corpus' pinion (1,300 triangles) rays
 // entered 20 patch boxes each under `quadric-implicit`. Split into parts whose boxes hug the
-// quadric, the patch is only tested by rays that come near it.
+// patch, it is only tested by rays that come near it. The same holds for bridges.
 #pragma once
 
 #include <cstdint>
@@ -14,11 +14,10 @@
 
 namespace quadtri {
 
-/// One primitive of a patch geometry: patch `patch`, restricted to its roots inside the box
-/// [lo, hi]. The box holds the whole of the patch's quadric that lies in its part of the
-/// patch's box (bounds exact up to rounding, grown by a hair and rounded outward to float), so
-/// the parts of a patch together hold every point of the patch, and a root inside two of them
-/// is the same root twice.
+/// One primitive of a patch geometry: patch (or bridge) `patch`, restricted to its roots inside
+/// the box [lo, hi]. The box holds every point of the patch in its part of the patch's box
+/// (bounds exact up to rounding, grown by a hair and rounded outward to float), so the parts of
+/// a patch together hold all of it, and a root inside two of them is the same root twice.
 struct QuadricPatchPart {
   float lo[3], hi[3];
   uint32_t patch;
@@ -45,8 +44,11 @@ inline constexpr double kMeshSplitGain = 0.9;
 
 /// The parts that trace `patches`, in patch order, when some patch is split; empty when none is
 /// (each patch is then its own primitive, bounded by its box). Patch t < mesh.triangleCount()
-/// stands for triangle t, which gives its area; the rest (bridges, and patches beyond the
-/// triangles) are one part each, as are patches whose boxes are not long.
+/// stands for triangle t, which gives its area, and a bridge is measured against its first
+/// patch's triangle; the others, and those whose boxes are not long, are one part each. Each
+/// half of a box is tightened to the bounds of the quadric in it and of the polytopes the
+/// patch's points lie in: its planes; for a bridge, its plane and the planes of either side but
+/// the one it lies in (betweenSheetAndBase).
 std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>& patches,
                                                 const TriangleMesh& mesh);
 
