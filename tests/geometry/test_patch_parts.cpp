@@ -100,7 +100,9 @@ void expectPartsHoldTheirPatches(const SurfaceModel& model, bool bridges) {
     splitBridges += patches[i].isBridge() && partsOf[i].size() > 1;
   }
   // The robust model's bridges lie along the slivers' long edges: they are split too.
-  if (bridges) EXPECT_GT(splitBridges, 0u);
+  if (bridges) {
+    EXPECT_GT(splitBridges, 0u);
+  }
   EXPECT_LT(split, kMeshSplitGain * whole);
   Pcg32 rng(11);
   int hits = 0;
@@ -160,7 +162,9 @@ void expectPartsChangeNoHit(const SurfaceModel& model) {
     ray.tnear = a.t * (1.0 + 1e-9);
     const RayHit a2 = whole.intersect(ray), b2 = parts.intersect(ray);
     ASSERT_EQ(a2.valid(), b2.valid()) << "ray " << i;
-    if (a2.valid()) EXPECT_EQ(a2.t, b2.t) << "ray " << i;
+    if (a2.valid()) {
+      EXPECT_EQ(a2.t, b2.t) << "ray " << i;
+    }
   }
   EXPECT_GT(hits, 5000);
 }
