@@ -78,8 +78,12 @@ Vec3 EdgeEnd::tangentPart(const Vec3& e, const Vec3& own) const {
 }
 
 EdgeEnds edgeEnds(const TriangleMesh& mesh) {
-  if (!mesh.hasNormals() || everyEndShared(mesh)) return EdgeEnds(mesh.triangleCount());
+  if (!edgeEndsNeedTopology(mesh)) return EdgeEnds(mesh.triangleCount());
   return EdgeEnds::classify(mesh, mesh.topology());
+}
+
+bool edgeEndsNeedTopology(const TriangleMesh& mesh) {
+  return mesh.hasNormals() && !everyEndShared(mesh);
 }
 
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo) {

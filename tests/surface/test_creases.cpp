@@ -220,17 +220,24 @@ TEST(Creases, EndsAreSharedWithoutClassifyingWhereEveryVertexHasOneNormal) {
   ASSERT_EQ(smooth.normalIndices, smooth.triangles);
   {
     const TriangleMesh fresh = smooth;
+    EXPECT_FALSE(edgeEndsNeedTopology(fresh));
     EXPECT_FALSE(edgeEnds(fresh).anySplit());
     EXPECT_EQ(fresh.topologyCache.builds(), 0u);
+    TriangleMesh bare = smooth;  // no shading normals: nothing to split either
+    bare.normals.clear();
+    bare.normalIndices.clear();
+    EXPECT_FALSE(edgeEndsNeedTopology(bare));
   }
   TriangleMesh zero = smooth;
   zero.normals[zero.triangles[0][0]] = Vec3::Zero();
+  EXPECT_TRUE(edgeEndsNeedTopology(zero));
   const EdgeEnds zeroEnds = edgeEnds(zero);
   ASSERT_TRUE(zeroEnds.anySplit());
   EXPECT_EQ(zeroEnds[0][0][0].kind, EdgeEnd::Kind::Crease);
   TriangleMesh own = smooth;  // corner (0, 0) gets a tilted normal of its own
   own.normals.push_back((own.normals[own.normalIndices[0][0]] + Vec3(0.3, 0, 0)).normalized());
   own.normalIndices[0][0] = uint32_t(own.normals.size() - 1);
+  EXPECT_TRUE(edgeEndsNeedTopology(own));
   EXPECT_TRUE(edgeEnds(own).anySplit());
   // The same normal under two indices is still one normal: classified, and Shared.
   TriangleMesh copied = smooth;

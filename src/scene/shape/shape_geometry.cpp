@@ -3,6 +3,7 @@
 #include "quadtri/mesh/mesh_io_check.h"
 #include "quadtri/render/render_scene.h"
 #include "quadtri/scene/scene_description.h"
+#include "quadtri/surface/creases.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/model_memory.h"
 
@@ -29,8 +30,18 @@ std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, Tri
                                                  const Tessellation& tessellation) {
   const ShapeDesc& desc = context.desc;
   transformMesh(mesh, desc.toWorld, desc.flipNormals);
-  std::shared_ptr<const SurfaceModel> converted =
-      makeModel(model, std::make_shared<TriangleMesh>(std::move(mesh)));
+  const auto shared = std::make_shared<TriangleMesh>(std::move(mesh));
+  std::shared_ptr<const SurfaceModel> converted = makeModel(model, shared);
+  // A model traced as patches or pieces is done with the mesh's edge adjacency once built (the
+  // loader's, 48 MB at a million triangles). Where its fold check waits until after the render
+  // (context.modelChecks, as mesh_file_xml.cpp defers it) and will not read it (a mesh without
+  // creases: edgeEndsNeedTopology), the adjacency is dropped here, so that it is not held
+  // through the acceleration structure's build, the render's peak. A mesh with creases keeps
+  // it: its check would build it again after the render, above the peak it saved.
+  const Representation kind = converted->representation();
+  if (context.modelChecks && (kind == Representation::Implicit || kind == Representation::Bezier) &&
+      !edgeEndsNeedTopology(*shared))
+    shared->topologyCache.forget();
   const Tessellation resolved = renderTessellation(*converted, tessellation);
   const std::string name = fmt::format("{} ({})", desc.location, model);
   chargeResolvedTessellation(context.budget, model, tessellation, resolved, ModelUse::Render,

@@ -71,6 +71,10 @@ class EdgeEnds {
   std::vector<Triangle> stored_;
 };
 EdgeEnds edgeEnds(const TriangleMesh& mesh);
+/// Whether edgeEnds(mesh) reads the mesh's edge adjacency (mesh.topology()): only where some
+/// vertex's corners carry different normals, or a normal of no length. A smooth mesh's ends are
+/// all Shared without it.
+bool edgeEndsNeedTopology(const TriangleMesh& mesh);
 /// edgeEnds with the mesh's topology already at hand.
 EdgeEnds edgeEnds(const TriangleMesh& mesh, const MeshTopology& topo);
 
