@@ -18,6 +18,12 @@ double boxArea(const Bounds3& b) {
   return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
 }
 
+// The six faces of `box` as planes, unit normals pointing in.
+std::array<Vec4, 6> boxFaces(const Bounds3& box) {
+  return {Vec4(1, 0, 0, -box.lo.x()), Vec4(-1, 0, 0, box.hi.x()), Vec4(0, 1, 0, -box.lo.y()),
+          Vec4(0, -1, 0, box.hi.y()), Vec4(0, 0, 1, -box.lo.z()), Vec4(0, 0, -1, box.hi.z())};
+}
+
 // Planes bounding where a primitive's points can lie, besides its box (unit normals, inside
 // n·x + d >= 0).
 using PlaneList = FixedVector<Vec4, 2 * QuadricPatch::kMaxPlanes + 2>;
@@ -65,12 +71,7 @@ Polytopes polytopesOf(const std::vector<QuadricPatch>& patches, size_t i) {
 // of its planes meet inside all of them. Empty when none is found.
 Bounds3 clippedBoxBounds(const PlaneList& bounding, const Bounds3& box) {
   FixedVector<Vec4, PlaneList::capacity() + 6> planes(bounding.begin(), bounding.end());
-  planes.push_back(Vec4(1, 0, 0, -box.lo.x()));
-  planes.push_back(Vec4(-1, 0, 0, box.hi.x()));
-  planes.push_back(Vec4(0, 1, 0, -box.lo.y()));
-  planes.push_back(Vec4(0, -1, 0, box.hi.y()));
-  planes.push_back(Vec4(0, 0, 1, -box.lo.z()));
-  planes.push_back(Vec4(0, 0, -1, box.hi.z()));
+  for (const Vec4& face : boxFaces(box)) planes.push_back(face);
   const double scale = box.diagonal().maxCoeff() + box.center().cwiseAbs().maxCoeff();
   const double tolerance = 1e-9 * scale;
   Bounds3 out;
@@ -146,11 +147,7 @@ Bounds3 quadricBoundsInBox(const QuadricCoeffs& q, const Bounds3& box) {
   const Vec3 size = box.diagonal();
   const double scale = size.maxCoeff() + box.center().cwiseAbs().maxCoeff();
   const double tolerance = 1e-10 * scale;
-  // The box as a cell: its six faces, unit normals pointing in.
-  const std::array<Vec4, 6> faces = {Vec4(1, 0, 0, -box.lo.x()), Vec4(-1, 0, 0, box.hi.x()),
-                                     Vec4(0, 1, 0, -box.lo.y()), Vec4(0, -1, 0, box.hi.y()),
-                                     Vec4(0, 0, 1, -box.lo.z()), Vec4(0, 0, -1, box.hi.z())};
-  const ConvexCell cell = makeConvexCell(faces, tolerance);
+  const ConvexCell cell = makeConvexCell(boxFaces(box), tolerance);
   // A cell the construction could not complete (a box flat to within the tolerance) keeps the
   // whole box: no part of the patch may be lost.
   if (cell.overflowed || cell.empty()) return box;
