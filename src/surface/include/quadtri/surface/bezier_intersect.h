@@ -141,14 +141,16 @@ struct BezierSubPatch {
 /// or whose box has more than 6 times the area of its corner triangle (a ray enters such a box
 /// far more often than it meets the region). An elongated region is bisected across its longest
 /// edge, which shrinks its box, others split in 4.
-/// The region budget rendering gives `pieces` pieces: 8 per piece, at least 65,536 and at most
+/// The region budget rendering gives `pieces` pieces: 2 per piece, at least 65,536 and at most
 /// 2,097,152 (2^21, 352 MiB of regions); a piece is always one region at least, so a mesh of
-/// more pieces than that traces each piece whole. On a fine mesh the regions are far below a
+/// more pieces than that traces each piece whole. More per piece renders no faster: on the
+/// armadillo (156,000 pieces) 8 per piece took 4 times the build and 2.4 times the memory for
+/// a 7% slower render. On a fine mesh the regions are far below a
 /// pixel and more of them only cost memory and build time: a 1,000,000-triangle torus had 24 M
 /// regions and a 9.4 GB peak with no cap, 4.2 M and 2.9 GB under 2^22, and now 3 M (one per
 /// piece, written in place) and 2.35 GB, its first pixel 2 to 4 s sooner and its render no
 /// slower.
-constexpr size_t kSubPatchesPerPiece = 8, kMinSubPatchBudget = 65536,
+constexpr size_t kSubPatchesPerPiece = 2, kMinSubPatchBudget = 65536,
                  kMaxSubPatchBudget = size_t(1) << 21;
 size_t defaultSubPatchBudget(size_t pieces);
 

@@ -28,7 +28,7 @@ uint64_t modelBytesPerTriangle(std::string_view model, const Tessellation& tesse
 
 /// The part of a model's cost that grows with the mesh only up to a cap, beside
 /// modelBytesPerTriangle: the regions quadric-g1 traces beyond one per piece
-/// (defaultSubPatchBudget: 8 per piece, three pieces per triangle, at most 2^21 per mesh; the
+/// (defaultSubPatchBudget: 2 per piece, three pieces per triangle, at most 2^21 per mesh; the
 /// first region of each piece is in modelBytesPerTriangle), when it is rendered; the block of a
 /// streamed surface (its points, triangles and text, about kTessellationBlockPoints points at
 /// most). Zero for every other model and use; an unknown name costs the dearest model's.
