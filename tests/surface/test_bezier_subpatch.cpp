@@ -528,8 +528,8 @@ TEST(BezierSubPatch, RegionsComePieceAfterPieceWhateverTheThreads) {
 TEST(BezierSubPatch, DefaultBudgetIsTwoPerPieceBetweenItsFloorAndItsCap) {
   EXPECT_EQ(defaultSubPatchBudget(0), 65536u);
   EXPECT_EQ(defaultSubPatchBudget(8192), 65536u);
-  EXPECT_EQ(defaultSubPatchBudget(17412), 65536u);            // the cow's pieces
-  EXPECT_EQ(defaultSubPatchBudget(156000), 2u * 156000u);     // the armadillo's
+  EXPECT_EQ(defaultSubPatchBudget(17412), 65536u);         // the cow's pieces
+  EXPECT_EQ(defaultSubPatchBudget(156000), 2u * 156000u);  // the armadillo's
   EXPECT_EQ(defaultSubPatchBudget(1048576), size_t(1) << 21);
   EXPECT_EQ(defaultSubPatchBudget(1048577), size_t(1) << 21);
   EXPECT_EQ(defaultSubPatchBudget(3000000), size_t(1) << 21);  // a 1,000,000-triangle mesh
