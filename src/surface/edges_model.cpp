@@ -64,14 +64,6 @@ nlohmann::json curveJson(const EdgeCurve& c) {
 
 }  // namespace
 
-Vec3 EdgeCurve::at(double s) const {
-  return (1.0 - s) * (1.0 - s) * a + 2.0 * s * (1.0 - s) * b + s * s * c;
-}
-
-Vec3 EdgeCurve::tangent(double s) const {
-  return 2.0 * ((1.0 - s) * (b - a) + s * (c - b));
-}
-
 std::array<Vec3, 3> EdgeCurve::coefficients() const {
   return {a, 2.0 * (b - a), a - 2.0 * b + c};
 }

@@ -39,8 +39,8 @@ std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, Tri
   // through the acceleration structure's build, the render's peak. A mesh with creases keeps
   // it: its check would build it again after the render, above the peak it saved.
   const Representation kind = converted->representation();
-  if (context.modelChecks && (kind == Representation::Implicit || kind == Representation::Bezier) &&
-      !edgeEndsNeedTopology(*shared))
+  const bool checkIsLater = context.modelChecks && !edgeEndsNeedTopology(*shared);
+  if (checkIsLater && (kind == Representation::Implicit || kind == Representation::Bezier))
     shared->topologyCache.forget();
   const Tessellation resolved = renderTessellation(*converted, tessellation);
   const std::string name = fmt::format("{} ({})", desc.location, model);
@@ -50,6 +50,8 @@ std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, Tri
   // per-triangle charge, measured on meshes without them: charged once their count is known.
   const size_t partsBefore = context.scene.patchPartBytes();
   context.scene.addModel(converted, resolved, context.bsdf, desc.areaRadiance, context.name);
+  // A tessellated model reads the adjacency while its lattice is welded, in addModel.
+  if (checkIsLater && kind == Representation::Tessellated) shared->topologyCache.forget();
   if (const size_t parts = context.scene.patchPartBytes() - partsBefore)
     chargeMemory(context.budget, parts, name, "tracing its long patches in parts");
   return converted;

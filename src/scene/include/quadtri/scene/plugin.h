@@ -130,8 +130,8 @@ struct ShapeBuildContext {
   std::vector<std::string>& warnings;  ///< BuiltScene::warnings
   FileDigests& fileDigests;            ///< BuiltScene::fileDigests (mesh files add theirs)
   /// BuiltScene::modelChecks when the caller defers them (buildScene's deferModelChecks): a
-  /// mesh shape whose model the scene keeps (implicit patches, Bézier pieces) then adds the
-  /// check of its model there instead of running it; null: run every check now.
+  /// mesh shape whose model has patches (all but flat, shading and shading-offset) then adds
+  /// the check of its model there instead of running it; null: run every check now.
   std::vector<ModelCheck>* modelChecks = nullptr;
 };
 

@@ -23,8 +23,8 @@ struct BuiltScene {
   /// warning allows (conversionWarning, corner_stats.h), naming the shape's element.
   std::vector<std::string> warnings;
   /// With deferModelChecks, the model checks not yet run, one per obj/ply shape whose model
-  /// the scene keeps for its patches or pieces (the others are run into `warnings`, so their
-  /// models are not held past the build): each gives what `warnings` would have held for it.
+  /// has patches (each holds its model, and so its mesh, until it is run): each gives what
+  /// `warnings` would have held for it.
   std::vector<ModelCheck> modelChecks;
   /// The digest of every mesh file as its loader read it, for renderKeys (so that the render
   /// key does not read the files again).
@@ -41,8 +41,8 @@ struct BuiltScene {
 /// (0: no limit), the image (renderImageBytes) and every mesh file with its model
 /// (loadMesh's MemoryBudget, modelBytesPerTriangle for rendering) are charged against it before
 /// they are built, and the first that would exceed it is refused with the estimate.
-/// With deferModelChecks, the model checks of the mesh shapes with implicit or Bézier models
-/// are left in BuiltScene::modelChecks instead of being run into BuiltScene::warnings.
+/// With deferModelChecks, the model checks of the mesh shapes whose models have patches are
+/// left in BuiltScene::modelChecks instead of being run into BuiltScene::warnings.
 BuiltScene buildScene(const SceneDescription& description,
                       const std::optional<std::string>& modelOverride = std::nullopt,
                       uint64_t maxMemoryBytes = 0, bool deferModelChecks = false);

@@ -33,9 +33,9 @@ struct SceneRenderRequest {
   /// Called with each warning (a define the file has no <default> for, a model that folds or
   /// falls back on a mesh) as it is found; the warnings are ignored when unset.
   std::function<void(const std::string&)> warn;
-  /// Leave the model checks (the fold and fallback warnings) of the mesh shapes with implicit
-  /// or Bézier models in PreparedRender::built.modelChecks for the caller to run, after the
-  /// image, instead of running them before it: they are not needed for the first pixel.
+  /// Leave the model checks (the fold and fallback warnings) of the mesh shapes whose models
+  /// have patches in PreparedRender::built.modelChecks for the caller to run, after the image,
+  /// instead of running them before it: they are not needed for the first pixel.
   bool deferModelChecks = false;
   /// Called with each "FILE:LINE: note: ..." of a Mitsuba property accepted without effect.
   std::function<void(const std::string&)> note;

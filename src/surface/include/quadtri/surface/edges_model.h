@@ -14,9 +14,13 @@ namespace quadtri {
 struct EdgeCurve {
   Vec3 a, b, c;
 
-  Vec3 at(double s) const;
+  // Inline: the blends evaluate six curves a point (the auto tessellation's level check
+  // evaluates 13 points a patch).
+  Vec3 at(double s) const {
+    return (1.0 - s) * (1.0 - s) * a + 2.0 * s * (1.0 - s) * b + s * s * c;
+  }
   /// d/ds of at(s).
-  Vec3 tangent(double s) const;
+  Vec3 tangent(double s) const { return 2.0 * ((1.0 - s) * (b - a) + s * (c - b)); }
   /// The thesis' eq. 4.1 coefficients {c0, c1, c2} of f(s) = s² c2 + s c1 + c0.
   std::array<Vec3, 3> coefficients() const;
 };
