@@ -24,6 +24,14 @@ std::array<int, 3> edgeIndex(int a, int b) {
 
 PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm,
                              const std::array<std::array<EdgeEnd, 2>, 3>* ends) {
+  PnPatch patch = fromEdgePoints(p, cornerEdgePoints(p, nrm, ends));
+  patch.setNormalField(p, nrm);
+  return patch;
+}
+
+std::array<Vec3, 6> PnPatch::cornerEdgePoints(const std::array<Vec3, 3>& p,
+                                              const std::array<Vec3, 3>& nrm,
+                                              const std::array<std::array<EdgeEnd, 2>, 3>* ends) {
   std::array<Vec3, 6> edgePoints;
   int next = 0;
   for (int a = 0; a < 3; ++a)
@@ -44,9 +52,7 @@ PnPatch PnPatch::fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3
         edgePoints[next++] = (2.0 * p[a] + p[b] - w * n) / 3.0;
       }
     }
-  PnPatch patch = fromEdgePoints(p, edgePoints);
-  patch.setNormalField(p, nrm);
-  return patch;
+  return edgePoints;
 }
 
 PnPatch PnPatch::fromEdgePoints(const std::array<Vec3, 3>& p,
@@ -162,23 +168,34 @@ Vec3 PnPatch::normalField(double u, double v) const {
 
 PnModel::PnModel(std::shared_ptr<const TriangleMesh> mesh) : SurfaceModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
+  // Every end Shared: the points are the ones cornerEdgePoints gives without ends, bit for bit
+  // (a Shared end's normal is the corner's own).
+  if (!edgeEndsNeedTopology(m)) return;
   const EdgeEnds ends = edgeEnds(m);
   resizeLarge(edgePoints_, m.triangleCount());
   // Each triangle writes only its own points: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
-    edgePoints_[t] = PnPatch::fromCorners(tri.p, tri.n, &ends[t]).edgePoints();
+    edgePoints_[t] = PnPatch::cornerEdgePoints(tri.p, tri.n, &ends[t]);
   });
+}
+
+std::array<Vec3, 6> PnModel::edgePoints(size_t t, const std::array<Vec3, 3>& p) const {
+  if (!edgePoints_.empty()) return edgePoints_[t];
+  const TriangleMesh& m = mesh();
+  return PnPatch::cornerEdgePoints(
+      p, {m.unitCornerNormal(t, 0), m.unitCornerNormal(t, 1), m.unitCornerNormal(t, 2)});
 }
 
 PnPatch PnModel::geometry(size_t t) const {
   const TriangleMesh& m = mesh();
-  return PnPatch::fromEdgePoints({m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)}, edgePoints_[t]);
+  const std::array<Vec3, 3> p = {m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)};
+  return PnPatch::fromEdgePoints(p, edgePoints(t, p));
 }
 
 PnPatch PnModel::patch(size_t t) const {
   const LocalTriangle tri = localTriangle(mesh(), t);
-  PnPatch patch = PnPatch::fromEdgePoints(tri.p, edgePoints_[t]);
+  PnPatch patch = PnPatch::fromEdgePoints(tri.p, edgePoints(t, tri.p));
   patch.setNormalField(tri.p, tri.n);
   return patch;
 }

@@ -384,8 +384,9 @@ TEST(Alternatives, PnNormalField) {
 }
 
 TEST(Alternatives, PnKeepsItsEdgePointsAndRebuildsTheSamePatch) {
-  // PnModel keeps six points a patch and rebuilds the rest from the mesh: every coefficient of
-  // the rebuilt patch is the one fromCorners gives, bit for bit, split normals included.
+  // PnModel keeps six points a patch where the mesh splits normals (cube, cylinder), none on a
+  // smooth mesh (icosphere), and rebuilds the rest from the mesh: every coefficient of the
+  // rebuilt patch is the one fromCorners gives, bit for bit, split normals included.
   for (const char* shape : {"icosphere", "cube", "cylinder"}) {
     ShapeParams params;
     params.divisions = 2;

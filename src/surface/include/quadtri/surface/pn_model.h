@@ -42,6 +42,10 @@ struct PnPatch {
   /// the tangent plane; nearly equal split normals are replaced by their mean.
   static PnPatch fromCorners(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm,
                              const std::array<std::array<EdgeEnd, 2>, 3>* ends = nullptr);
+  /// fromCorners' six edge points (edgePoints' order), without the rest of the patch.
+  static std::array<Vec3, 6> cornerEdgePoints(
+      const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& nrm,
+      const std::array<std::array<EdgeEnd, 2>, 3>* ends = nullptr);
   /// The geometry from corners p and the six edge points (edgePoints' order), the centre
   /// computed as fromCorners computes it, bit for bit; the normal field is left unset.
   static PnPatch fromEdgePoints(const std::array<Vec3, 3>& p,
@@ -84,8 +88,13 @@ class PnModel final : public SurfaceModel {
  private:
   /// Patch t's geometry without its normal field (what evaluate and position read).
   PnPatch geometry(size_t t) const;
+  /// Patch t's six edge points: stored, or computed from its corners where nothing is stored.
+  std::array<Vec3, 6> edgePoints(size_t t, const std::array<Vec3, 3>& p) const;
   /// Only the six edge points of each patch are kept (144 bytes, where the whole patch took
-  /// 384): the corners are the mesh's and the centre and normal field follow from them.
+  /// 384): the corners are the mesh's and the centre and normal field follow from them. On a
+  /// mesh whose ends are all Shared (no split normal, edgeEndsNeedTopology) the points follow
+  /// from the corners and their normals alone and none is kept: computing them again costs
+  /// less than the 144 MB a million triangles would take (and the time to fill them).
   std::vector<std::array<Vec3, 6>> edgePoints_;
 };
 
