@@ -48,7 +48,8 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
     : QuadraticPatchModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  resizeLarge(curvatures_, m.triangleCount());
+  const bool keepCurvatures = edgeEndsNeedTopology(m);
+  if (keepCurvatures) resizeLarge(curvatures_, m.triangleCount());
   resizeLarge(controlPoints_, m.triangleCount());
   std::vector<uint8_t> gaveUp(m.triangleCount(), 0);
   // Each triangle writes only its own slots: the result does not depend on the thread count.
@@ -61,14 +62,14 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
       if (ek.crease() || el.crease()) {
         // At a crease the tangent follows the crease line both sides share (creases.h).
         b[k] = creaseControlPoint(tri.p[k], ek, tri.n[k], tri.p[l], el, tri.n[l]);
-        curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * b[k];
+        if (keepCurvatures) curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * b[k];
         continue;
       }
       bool straight = false;
       const Vec3 c = nagataCurvature(tri.p[k], ek.normalFor(tri.n[k]), tri.p[l],
                                      el.normalFor(tri.n[l]), &straight);
       gaveUp[t] |= straight;
-      curvatures_[t][k] = c;
+      if (keepCurvatures) curvatures_[t][k] = c;
       // x(t) = x0 + (Δx − c) t + c t² in Bernstein form: control point x0 + (Δx − c)/2.
       b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
     }
@@ -76,12 +77,21 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
   setFallbacks(std::move(gaveUp));
 }
 
+Vec3 NagataModel::curvature(size_t t, int k) const {
+  if (!curvatures_.empty()) return curvatures_[t][k];
+  // Every end Shared: each side's normal is its own, as the constructor passed them.
+  const TriangleMesh& m = mesh();
+  const int l = (k + 1) % 3;
+  return nagataCurvature(m.corner(t, k), m.unitCornerNormal(t, k), m.corner(t, l),
+                         m.unitCornerNormal(t, l));
+}
+
 nlohmann::json NagataModel::patchJson(size_t t) const {
   const QuadraticPatch patch = this->patch(t);
   nlohmann::json out;
   for (int k = 0; k < 3; ++k) {
     out["vertices"].push_back(vecJson(patch.v[k]));
-    out["curvature"].push_back(vecJson(curvatures_[t][k]));
+    out["curvature"].push_back(vecJson(curvature(t, k)));
     out["control_points"].push_back(vecJson(patch.b[k]));
   }
   return out;

@@ -318,6 +318,35 @@ TEST(Alternatives, NagataCurvatureSolvesTheTangentConditions) {
   EXPECT_EQ(nagataCurvature(x0, n0, x1, -n0), Vec3::Zero());
 }
 
+TEST(Alternatives, NagataReportsTheCurvatureOfTheEdgeItTraces) {
+  // On a smooth mesh (icosphere) the coefficients are computed when asked, on a creased one
+  // (cube, cylinder) kept: either way each is the c of the control point the patch uses,
+  // b = (x0 + x1)/2 − c/2 off a crease, c = x0 + x1 − 2b at one, bit for bit.
+  for (const char* shape : {"icosphere", "cube", "cylinder"}) {
+    ShapeParams params;
+    params.divisions = 2;
+    const auto mesh = std::make_shared<const TriangleMesh>(makeBuiltin(shape, params).mesh);
+    const NagataModel nagata(mesh);
+    const EdgeEnds ends = edgeEnds(*mesh);
+    size_t creased = 0;
+    for (size_t t = 0; t < mesh->triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int l = (k + 1) % 3;
+        const Vec3 &x0 = mesh->corner(t, k), &x1 = mesh->corner(t, l);
+        const Vec3 b = nagata.patch(t).b[k];
+        const Vec3 c = nagata.curvature(t, k);
+        if (ends[t][k][0].crease() || ends[t][k][1].crease()) {
+          ++creased;
+          EXPECT_EQ(c, x0 + x1 - 2.0 * b) << shape << t << k;
+        } else {
+          EXPECT_EQ(b, 0.5 * (x0 + x1) - 0.5 * c) << shape << t << k;
+        }
+        EXPECT_EQ(nagata.patchJson(t)["curvature"][k][0].get<double>(), c.x()) << shape << t;
+      }
+    EXPECT_EQ(creased > 0, std::string(shape) != "icosphere") << shape;
+  }
+}
+
 TEST(Alternatives, NagataControlPointVersusThesisEdgePlane) {
   // Both control points lie on the line where the end tangent planes meet. Nagata takes the
   // point of that line nearest the chord midpoint; the thesis the point on its edge plane. With

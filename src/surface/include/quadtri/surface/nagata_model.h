@@ -47,9 +47,12 @@ class NagataModel final : public QuadraticPatchModel {
   nlohmann::json patchJson(size_t t) const override;
 
   /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).
-  const Vec3& curvature(size_t t, int k) const { return curvatures_[t][k]; }
+  Vec3 curvature(size_t t, int k) const;
 
  private:
+  /// Per triangle where the mesh splits normals (edgeEndsNeedTopology); empty on a smooth
+  /// mesh, whose coefficients follow from each edge's corners and their normals alone and are
+  /// computed when asked (only patchJson reads them): 72 bytes a triangle less.
   std::vector<std::array<Vec3, 3>> curvatures_;
 };
 
