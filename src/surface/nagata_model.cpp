@@ -48,33 +48,48 @@ NagataModel::NagataModel(std::shared_ptr<const TriangleMesh> mesh)
     : QuadraticPatchModel(std::move(mesh)) {
   const TriangleMesh& m = this->mesh();
   const EdgeEnds ends = edgeEnds(m);
-  const bool keepCurvatures = edgeEndsNeedTopology(m);
-  if (keepCurvatures) resizeLarge(curvatures_, m.triangleCount());
-  resizeLarge(controlPoints_, m.triangleCount());
+  // A smooth mesh keeps nothing (computeControlPoints, curvature); its fallbacks are counted.
+  const bool keep = edgeEndsNeedTopology(m);
+  if (keep) {
+    resizeLarge(curvatures_, m.triangleCount());
+    resizeLarge(controlPoints_, m.triangleCount());
+  }
   std::vector<uint8_t> gaveUp(m.triangleCount(), 0);
   // Each triangle writes only its own slots: the result does not depend on the thread count.
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     const LocalTriangle tri = localTriangle(m, t);
-    std::array<Vec3, 3>& b = controlPoints_[t];
     for (int k = 0; k < 3; ++k) {
       const int l = (k + 1) % 3;
       const auto& [ek, el] = ends[t][k];
       if (ek.crease() || el.crease()) {
-        // At a crease the tangent follows the crease line both sides share (creases.h).
-        b[k] = creaseControlPoint(tri.p[k], ek, tri.n[k], tri.p[l], el, tri.n[l]);
-        if (keepCurvatures) curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * b[k];
+        // At a crease the tangent follows the crease line both sides share (creases.h): only
+        // where normals split, so on a mesh that keeps its points.
+        const Vec3 b = creaseControlPoint(tri.p[k], ek, tri.n[k], tri.p[l], el, tri.n[l]);
+        controlPoints_[t][k] = b;
+        curvatures_[t][k] = tri.p[k] + tri.p[l] - 2.0 * b;
         continue;
       }
       bool straight = false;
       const Vec3 c = nagataCurvature(tri.p[k], ek.normalFor(tri.n[k]), tri.p[l],
                                      el.normalFor(tri.n[l]), &straight);
       gaveUp[t] |= straight;
-      if (keepCurvatures) curvatures_[t][k] = c;
+      if (!keep) continue;
+      curvatures_[t][k] = c;
       // x(t) = x0 + (Δx − c) t + c t² in Bernstein form: control point x0 + (Δx − c)/2.
-      b[k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
+      controlPoints_[t][k] = 0.5 * (tri.p[k] + tri.p[l]) - 0.5 * c;
     }
   });
   setFallbacks(std::move(gaveUp));
+}
+
+std::array<Vec3, 3> NagataModel::computeControlPoints(size_t t) const {
+  const TriangleMesh& m = mesh();
+  std::array<Vec3, 3> b;
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    b[k] = 0.5 * (m.corner(t, k) + m.corner(t, l)) - 0.5 * curvature(t, k);
+  }
+  return b;
 }
 
 Vec3 NagataModel::curvature(size_t t, int k) const {

@@ -1,8 +1,16 @@
 #include "quadtri/surface/quadratic_model.h"
 
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 #include "quadtri/surface/local_patches.h"
 
 namespace quadtri {
+
+std::array<Vec3, 3> QuadraticPatchModel::computeControlPoints(size_t t) const {
+  throw std::logic_error(fmt::format("{}: patch {} has no control points", name(), t));
+}
 
 SurfacePoint QuadraticPatchModel::evaluate(size_t t, double u, double v) const {
   const QuadraticPatch p = patch(t);

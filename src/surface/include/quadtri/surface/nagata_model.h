@@ -50,9 +50,11 @@ class NagataModel final : public QuadraticPatchModel {
   Vec3 curvature(size_t t, int k) const;
 
  private:
-  /// Per triangle where the mesh splits normals (edgeEndsNeedTopology); empty on a smooth
-  /// mesh, whose coefficients follow from each edge's corners and their normals alone and are
-  /// computed when asked (only patchJson reads them): 72 bytes a triangle less.
+  /// On a mesh without split normals (edgeEndsNeedTopology) nothing is kept: a triangle's
+  /// points follow from its corners and their normals (b = (x0 + x1)/2 − c/2).
+  std::array<Vec3, 3> computeControlPoints(size_t t) const override;
+  /// Per triangle where the mesh splits normals; empty on a smooth mesh, whose coefficients
+  /// are computed when asked, as its control points are (only patchJson reads them).
   std::vector<std::array<Vec3, 3>> curvatures_;
 };
 

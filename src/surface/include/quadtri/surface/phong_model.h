@@ -36,6 +36,9 @@ class PhongModel final : public QuadraticPatchModel {
   double alpha() const { return alpha_; }
 
  private:
+  /// On a mesh without split normals (edgeEndsNeedTopology) nothing is kept: each triangle's
+  /// points are computed from its corners and normals when asked.
+  std::array<Vec3, 3> computeControlPoints(size_t t) const override;
   double alpha_;
 };
 
