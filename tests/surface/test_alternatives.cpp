@@ -145,9 +145,8 @@ TEST(Alternatives, PhongIsThePapersProjectionBlend) {
             Vec3 projected = Vec3::Zero();
             for (int k = 0; k < 3; ++k)
               projected += l[k] * (p - (p - tri.p[k]).dot(tri.n[k]) * tri.n[k]);
-            worst = std::max(worst,
-                             (phong.position(t, u, v) - ((1.0 - alpha) * p + alpha * projected))
-                                 .norm());
+            worst = std::max(
+                worst, (phong.position(t, u, v) - ((1.0 - alpha) * p + alpha * projected)).norm());
           }
       }
       EXPECT_LT(worst, 1e-13 * size) << spec << " α " << alpha;
