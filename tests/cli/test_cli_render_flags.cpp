@@ -78,37 +78,44 @@ TEST(CliRenderFlags, FigureSppCapsTheAdaptiveIntegratorAsRenderDoes) {
   fs::remove_all(dir);
 }
 
-// `render` runs the fold and fallback check of an implicit or Bézier model after the image (it
-// does not need it, and on a million triangles it took 0.2 to 0.5 s before the first pixel):
-// the warning still comes, once, after "rendering ...", and the image is written.
+// `render` runs the fold and fallback check of a model with patches (implicit, Bézier or
+// tessellated) after the image (it does not need it, and on a million triangles it took 0.1 to
+// 0.5 s before the first pixel): the warning still comes, once, after "rendering ...", and the
+// image is written.
 TEST(CliRenderFlags, RenderWarnsOfAFoldingModelAfterTheImage) {
   const fs::path dir = freshDir("render-fold-warning");
   // Two triangles facing +z with equal normals, one corner lifted: no edge curve of the
-  // quadric models can be tangent at both ends, so quadric-implicit falls back on both.
+  // quadric models can be tangent at both ends, so quadric-implicit and quadric-param (traced
+  // as its tessellation) fall back on both.
   std::ofstream(dir / "step.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0.3\nv 0 1 0\nvn 0 0 1\n"
                                      "f 1//1 2//1 3//1\nf 1//1 3//1 4//1\n";
-  std::ofstream(dir / "s.xml") << R"(<scene version="3.0.0">
+  for (const std::string model : {"quadric-implicit", "quadric-param"}) {
+    SCOPED_TRACE(model);
+    std::ofstream(dir / "s.xml") << R"(<scene version="3.0.0">
   <sensor type="perspective"><float name="fov" value="30"/>
     <transform name="to_world"><lookat origin="0.5, 0.5, 6" target="0.5, 0.5, 0" up="0, 1, 0"/></transform>
     <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film>
     <sampler type="independent"><integer name="sample_count" value="2"/></sampler>
   </sensor>
   <emitter type="constant"/>
-  <shape type="obj"><string name="filename" value="step.obj"/><string name="model" value="quadric-implicit"/></shape>
+  <shape type="obj"><string name="filename" value="step.obj"/><string name="model" value=")"
+                                 << model << R"("/></shape>
 </scene>)";
-  CliProcess render({"render", (dir / "s.xml").string(), "-o", (dir / "r.exr").string()}, dir,
-                    "render");
-  ASSERT_EQ(render.wait(), 0) << render.stderrText();
-  const std::string err = render.stderrText();
-  const std::string warning = "step.obj: quadric-implicit folds at ";
-  const size_t at = err.find(warning);
-  ASSERT_NE(at, std::string::npos) << err;
-  EXPECT_EQ(err.find(warning, at + 1), std::string::npos) << err;
-  EXPECT_NE(err.find("and falls back on 100% of patches (2 of 2)"), std::string::npos) << err;
-  const size_t rendering = err.find("rendering 4x4");
-  ASSERT_NE(rendering, std::string::npos) << err;
-  EXPECT_LT(rendering, at) << err;
-  EXPECT_TRUE(fs::exists(dir / "r.exr"));
+    fs::remove(dir / "r.exr");
+    CliProcess render({"render", (dir / "s.xml").string(), "-o", (dir / "r.exr").string()}, dir,
+                      "render");
+    ASSERT_EQ(render.wait(), 0) << render.stderrText();
+    const std::string err = render.stderrText();
+    const std::string warning = "step.obj: " + model + " folds at ";
+    const size_t at = err.find(warning);
+    ASSERT_NE(at, std::string::npos) << err;
+    EXPECT_EQ(err.find(warning, at + 1), std::string::npos) << err;
+    EXPECT_NE(err.find("and falls back on 100% of patches (2 of 2)"), std::string::npos) << err;
+    const size_t rendering = err.find("rendering 4x4");
+    ASSERT_NE(rendering, std::string::npos) << err;
+    EXPECT_LT(rendering, at) << err;
+    EXPECT_TRUE(fs::exists(dir / "r.exr"));
+  }
   fs::remove_all(dir);
 }
 

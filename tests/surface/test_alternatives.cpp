@@ -444,12 +444,20 @@ TEST(Alternatives, PnNormalField) {
 
 TEST(Alternatives, PnKeepsItsEdgePointsAndRebuildsTheSamePatch) {
   // PnModel keeps six points a patch where the mesh splits normals (cube, cylinder), none on a
-  // smooth mesh (icosphere), and rebuilds the rest from the mesh: every coefficient of the
-  // rebuilt patch is the one fromCorners gives, bit for bit, split normals included.
-  for (const char* shape : {"icosphere", "cube", "cylinder"}) {
+  // smooth mesh (icosphere, and the icosphere without normals), and rebuilds the rest from the
+  // mesh: every coefficient of the rebuilt patch is the one fromCorners gives, bit for bit,
+  // split normals included.
+  for (const std::string shape : {"icosphere", "icosphere without normals", "cube", "cylinder"}) {
     ShapeParams params;
     params.divisions = 2;
-    const auto mesh = std::make_shared<const TriangleMesh>(makeBuiltin(shape, params).mesh);
+    TriangleMesh built = makeBuiltin(shape.substr(0, shape.find(' ')), params).mesh;
+    if (shape.find("without") != std::string::npos) {
+      built.normals.clear();
+      built.normalIndices.clear();
+    }
+    const auto mesh = std::make_shared<const TriangleMesh>(std::move(built));
+    // Which path each takes: the points are kept only where the ends need the adjacency.
+    EXPECT_EQ(edgeEndsNeedTopology(*mesh), shape == "cube" || shape == "cylinder") << shape;
     const PnModel pn(mesh);
     const EdgeEnds ends = edgeEnds(*mesh);
     for (size_t t = 0; t < mesh->triangleCount(); ++t) {

@@ -10,6 +10,7 @@
 #include "quadtri/geometry/accel.h"
 #include "quadtri/geometry/model_geometry.h"
 #include "quadtri/geometry/rng.h"
+#include "quadtri/math/error.h"
 #include "quadtri/mesh/normals.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"

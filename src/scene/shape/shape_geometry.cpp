@@ -1,5 +1,7 @@
 #include "shape_geometry.h"
 
+#include <fmt/format.h>
+
 #include "quadtri/mesh/mesh_io_check.h"
 #include "quadtri/render/render_scene.h"
 #include "quadtri/scene/scene_description.h"
@@ -39,7 +41,9 @@ std::shared_ptr<const SurfaceModel> addMeshShape(ShapeBuildContext& context, Tri
   // through the acceleration structure's build, the render's peak. A mesh with creases keeps
   // it: its check would build it again after the render, above the peak it saved.
   const Representation kind = converted->representation();
-  const bool checkIsLater = context.modelChecks && !edgeEndsNeedTopology(*shared);
+  // (The models that keep the input triangles have no check, and skip the corner pass.)
+  const bool checkIsLater = context.modelChecks && kind != Representation::InputTriangles &&
+                            !edgeEndsNeedTopology(*shared);
   if (checkIsLater && (kind == Representation::Implicit || kind == Representation::Bezier))
     shared->topologyCache.forget();
   const Tessellation resolved = renderTessellation(*converted, tessellation);

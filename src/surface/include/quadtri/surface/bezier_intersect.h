@@ -145,7 +145,7 @@ struct BezierSubPatch {
 /// 2,097,152 (2^21, 352 MiB of regions); a piece is always one region at least, so a mesh of
 /// more pieces than that traces each piece whole. More per piece renders no faster: on the
 /// armadillo (156,000 pieces) 8 per piece took 4 times the build and 2.4 times the memory for
-/// a 7% slower render. On a fine mesh the regions are far below a
+/// a 5% slower render. On a fine mesh the regions are far below a
 /// pixel and more of them only cost memory and build time: a 1,000,000-triangle torus had 24 M
 /// regions and a 9.4 GB peak with no cap, 4.2 M and 2.9 GB under 2^22, and now 3 M (one per
 /// piece, written in place) and 2.35 GB, its first pixel 2 to 4 s sooner and its render no

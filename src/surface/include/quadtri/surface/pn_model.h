@@ -82,7 +82,7 @@ class PnModel final : public SurfaceModel {
   /// The paper's quadratic normal field of patch t at (u, v), normalised (falls back to the
   /// geometric normal where the field vanishes).
   Vec3 pnNormal(size_t t, double u, double v) const;
-  /// Patch t, normal field included, rebuilt from the corners and the stored edge points.
+  /// Patch t, normal field included, rebuilt from the corners and its edge points.
   PnPatch patch(size_t t) const;
 
  private:
@@ -90,11 +90,12 @@ class PnModel final : public SurfaceModel {
   PnPatch geometry(size_t t) const;
   /// Patch t's six edge points: stored, or computed from its corners where nothing is stored.
   std::array<Vec3, 6> edgePoints(size_t t, const std::array<Vec3, 3>& p) const;
-  /// Only the six edge points of each patch are kept (144 bytes, where the whole patch took
-  /// 384): the corners are the mesh's and the centre and normal field follow from them. On a
-  /// mesh whose ends are all Shared (no split normal, edgeEndsNeedTopology) the points follow
-  /// from the corners and their normals alone and none is kept: computing them again costs
-  /// less than the 144 MB a million triangles would take (and the time to fill them).
+  /// At most the six edge points of each patch are kept (144 bytes, where the whole patch took
+  /// 384): the corners are the mesh's and the centre and normal field follow from them. Where
+  /// edgeEndsNeedTopology is false (no vertex whose corners carry different normals, so every
+  /// end is Shared) the points follow from the corners and their normals alone and none is
+  /// kept: computing them again costs less than the 144 MB a million triangles would take
+  /// (and the time to fill them).
   std::vector<std::array<Vec3, 6>> edgePoints_;
 };
 
