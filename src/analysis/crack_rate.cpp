@@ -182,7 +182,7 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
   const size_t count = parallelReduce(
       tbb::blocked_range<size_t>(0, options.lines), size_t(0),
       [&](const tbb::blocked_range<size_t>& range, size_t sum) {
-        enableFlushToZero();
+        const FlushToZeroScope flushToZero;
         std::vector<RayHit> hits;
         std::vector<LineHit> line;
         std::vector<uint32_t> scratch;

@@ -410,4 +410,12 @@ void enableFlushToZero() {
   _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
 
+FlushToZeroScope::FlushToZeroScope() : mode_(_mm_getcsr()) {
+  enableFlushToZero();
+}
+
+FlushToZeroScope::~FlushToZeroScope() {
+  _mm_setcsr(mode_);
+}
+
 }  // namespace quadtri

@@ -240,7 +240,7 @@ RenderResult render(const RenderScene& scene, const Integrator& integrator,
     parallelForRange(
         tbb::blocked_range<size_t>(0, tileCount, 1),
         [&](const tbb::blocked_range<size_t>& range) {
-          enableFlushToZero();
+          const FlushToZeroScope flushToZero;
           for (size_t tile = range.begin(); tile != range.end(); ++tile) {
             const int x0 = int(tile % size_t(tilesX)) * kTileSize,
                       y0 = int(tile / size_t(tilesX)) * kTileSize;

@@ -22,7 +22,7 @@ TriangleMesh icosphere(int level) {
 using fixtures::spherePatches;
 
 TEST(Accel, TriangleHitAtAnalyticT) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   TriangleMesh mesh;
   mesh.positions = {Vec3(-1, -1, 2), Vec3(3, -1, 2), Vec3(-1, 3, 2)};
   mesh.triangles = {{0, 1, 2}};
@@ -56,7 +56,7 @@ TEST(Accel, TriangleHitAtAnalyticT) {
 // HitNormal::Skip leaves the normal of triangle and patch hits zero and changes nothing else:
 // the same hit, t, (u, v) and point as with the normal filled, which is unit.
 TEST(Accel, SkippingTheHitNormalChangesNothingElse) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   TriangleMesh mesh = icosphere(2);
   for (Vec3& p : mesh.positions) p = 0.5 * p + Vec3(2.0, 0.0, 0.0);
   const std::vector<QuadricPatch> patches = spherePatches();
@@ -91,7 +91,7 @@ TEST(Accel, SkippingTheHitNormalChangesNothingElse) {
 }
 
 TEST(Accel, RobustRaysThroughSharedEdgesAndVerticesNeverMiss) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   for (int level = 0; level <= 3; ++level) {
     const TriangleMesh mesh = icosphere(level);
     Accel accel(Accel::Options{true, false});
@@ -115,7 +115,7 @@ TEST(Accel, RobustRaysThroughSharedEdgesAndVerticesNeverMiss) {
 }
 
 TEST(Accel, QuadricSpherePatchesHitAtUnitDistanceWithRadialNormal) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const std::vector<QuadricPatch> patches = spherePatches();
   Accel accel;
   const uint32_t id = accel.addQuadricPatches(patches);
@@ -146,7 +146,7 @@ TEST(Accel, QuadricSpherePatchesHitAtUnitDistanceWithRadialNormal) {
 TEST(Accel, NearestOfTrianglesAndPatches) {
   // A unit sphere of patches cut by the plane z = 0.5 (two big triangles): rays from the
   // centre hit the plane first where it is nearer than the sphere, and the sphere elsewhere.
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const std::vector<QuadricPatch> patches = spherePatches();
   TriangleMesh plane;
   plane.positions = {Vec3(-3, -3, 0.5), Vec3(3, -3, 0.5), Vec3(3, 3, 0.5), Vec3(-3, 3, 0.5)};
@@ -189,7 +189,7 @@ void expectNoReintersection(const Accel& accel, double offset, uint64_t seed) {
 }
 
 TEST(Accel, TriangleReintersect) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const TriangleMesh mesh = icosphere(2);
   Accel accel;
   accel.addTriangles(mesh);
@@ -199,7 +199,7 @@ TEST(Accel, TriangleReintersect) {
 }
 
 TEST(Accel, QuadricPatchReintersect) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const std::vector<QuadricPatch> patches = spherePatches();
   Accel accel;
   accel.addQuadricPatches(patches);
@@ -209,7 +209,7 @@ TEST(Accel, QuadricPatchReintersect) {
 }
 
 TEST(Accel, G1PiecesReintersect) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   // quadric-g1 on a level-2 icosphere with the sphere's normals: a closed convex surface of
   // 960 quartic pieces, traced in double.
   const G1Model model(std::make_shared<const TriangleMesh>(icosphere(2)));
@@ -220,7 +220,7 @@ TEST(Accel, G1PiecesReintersect) {
 }
 
 TEST(Accel, AllHitsReportsEveryCrossing) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const TriangleMesh mesh = icosphere(2);
   const std::vector<QuadricPatch> patches = spherePatches();
   Accel accel(Accel::Options{true, true});

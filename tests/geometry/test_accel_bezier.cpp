@@ -57,7 +57,7 @@ std::vector<BezierTriangle> scatteredPieces() {
 }
 
 TEST(Accel, BezierPiecesAgreeWithTheDirectIntersector) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const std::vector<BezierTriangle> pieces = scatteredPieces();
   Accel accel(Accel::Options{false, true});
   const uint32_t id = accel.addBezierTriangles(pieces);
@@ -116,7 +116,7 @@ TEST(Accel, BezierPiecesAgreeWithTheDirectIntersector) {
 // A rendering structure traces the pieces' sub-patches: the same nearest hits, to 1e-9, each
 // reported as its piece's, and the same occlusion.
 TEST(Accel, BezierSubPatchesAgreeWithTheDirectIntersector) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const std::vector<BezierTriangle> pieces = scatteredPieces();
   Accel accel;
   const uint32_t id = accel.addBezierTriangles(pieces);
@@ -174,7 +174,7 @@ TEST(Accel, BezierSubPatchesAgreeWithTheDirectIntersector) {
 // nearest, their own piece's second meeting included, and with the origin named, fewer rays come
 // back to where they started.
 TEST(Accel, RaysLeavingAPieceSkipOnlyTheirOrigin) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   const std::vector<BezierTriangle> pieces = scatteredPieces();
   Accel accel;
   const uint32_t id = accel.addBezierTriangles(pieces);
@@ -226,7 +226,7 @@ TEST(Accel, RaysLeavingAPieceSkipOnlyTheirOrigin) {
 // triangles: each hit still reports the piece, its (u, v) and its normal, in double precision,
 // and a nearer curved piece still wins.
 TEST(Accel, FlatBezierPiecesAreTracedAsTheirTriangles) {
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   std::vector<BezierTriangle> pieces = scatteredPieces();
   Pcg32 rng(71);
   const size_t curved = pieces.size();

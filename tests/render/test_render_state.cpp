@@ -89,7 +89,9 @@ TEST(RenderState, CheckpointsHoldFinishedPixelsWithTheirFinalValues) {
   options.samplesPerPixel = 64;
   options.threads = 2;
   options.stateKey = 7;
-  options.checkpointSeconds = 0.01;
+  // Far below the render's time (a 32² render at 64 samples ended before a 10 ms interval
+  // on a fast run), so checkpoints are always taken.
+  options.checkpointSeconds = 0.001;
   std::mutex mutex;
   std::vector<RenderState> states;
   options.checkpoint = [&](const RenderState& s) {
@@ -115,7 +117,7 @@ TEST(RenderState, CheckpointsHoldFinishedPixelsWithTheirFinalValues) {
     }
   }
   // A callback that throws stops the checkpoints, not the render. The render lasts far longer
-  // than the 10 ms between checkpoints (64² pixels at 256 samples), so one is always due.
+  // than the 1 ms between checkpoints (64² pixels at 256 samples), so one is always due.
   RenderScene longer;
   sphereScene(longer, 64, 64);
   options.samplesPerPixel = 256;

@@ -1,5 +1,6 @@
 // The tiled renderer: determinism, NaN handling, adaptive sampling and stopping early.
 #include <gtest/gtest.h>
+#include <xmmintrin.h>
 
 #include <chrono>
 #include <thread>
@@ -42,6 +43,28 @@ TEST(Renderer, ImageDoesNotDependOnThreadCount) {
   for (size_t i = 0; i < one.image.pixels.size(); ++i)
     differing += (one.image.pixels[i] != other.image.pixels[i]).any();
   EXPECT_GT(differing, one.image.pixels.size() / 2);
+}
+
+TEST(Renderer, LeavesTheCallersFloatingPointModeAsItWas) {
+  // The tiles are traced with flush-to-zero and denormals-are-zero set, as Embree asks, and TBB
+  // runs some on the calling thread: that thread's mode must come back as it was, or a
+  // caller's later arithmetic on tiny numbers would silently give zero.
+  RenderScene scene;
+  furnaceScene(scene, 16, 16);
+  const unsigned before = _mm_getcsr();
+  _mm_setcsr(before & ~unsigned(_MM_FLUSH_ZERO_ON | 0x0040));  // both off (0x0040: DAZ)
+  const unsigned kFlags = 0x3f;  // the sticky exception flags, which arithmetic sets
+  const unsigned mode = _mm_getcsr() & ~kFlags;
+  for (const int threads : {1, 2}) {
+    RenderOptions options;
+    options.samplesPerPixel = 2;
+    options.threads = threads;
+    (void)render(scene, PathIntegrator({}), options);
+    EXPECT_EQ(_mm_getcsr() & ~kFlags, mode) << threads << " threads";
+    volatile double tiny = 1e-310;  // a denormal
+    EXPECT_GT(tiny * 0.5, 0.0) << threads << " threads";
+  }
+  _mm_setcsr(before);
 }
 
 // An integrator that returns NaN or infinity for some samples.

@@ -250,7 +250,7 @@ int main(int argc, char** argv) {
   double worstStray = 0;
   size_t worstStrayPrim = 0;
   parallelFor(size_t(0), lines, [&](size_t i) {
-    enableFlushToZero();
+    const FlushToZeroScope flushToZero;
     Pcg32 rng(seed, i);
     const Vec3 u(rng.nextDouble(), rng.nextDouble(), rng.nextDouble());
     const Vec3 p = box.lo + box.diagonal().cwiseProduct(u);

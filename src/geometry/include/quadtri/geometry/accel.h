@@ -98,4 +98,18 @@ class Accel {
 /// thread that traces rays.
 void enableFlushToZero();
 
+/// enableFlushToZero for as long as it lives, then the thread's mode as it was: for the bodies
+/// of parallel loops, which TBB also runs on the thread that started them (the caller's own
+/// floating-point mode must not change under it).
+class FlushToZeroScope {
+ public:
+  FlushToZeroScope();
+  ~FlushToZeroScope();
+  FlushToZeroScope(const FlushToZeroScope&) = delete;
+  FlushToZeroScope& operator=(const FlushToZeroScope&) = delete;
+
+ private:
+  unsigned mode_;
+};
+
 }  // namespace quadtri
