@@ -178,7 +178,7 @@ TEST(SceneBuilder, WarnsOnceForEachMeshWhoseModelFallsBack) {
         model, 0, true);
   };
   EXPECT_TRUE(b.modelChecks.empty());
-  for (const std::optional<std::string> model :
+  for (const std::optional<std::string>& model :
        {std::optional<std::string>(), std::optional<std::string>("quadric-implicit"),
         std::optional<std::string>("quadric-g1")}) {
     SCOPED_TRACE(model.value_or("the scene's quadric-param"));

@@ -450,12 +450,12 @@ TEST(Alternatives, PnKeepsItsEdgePointsAndRebuildsTheSamePatch) {
   for (const std::string shape : {"icosphere", "icosphere without normals", "cube", "cylinder"}) {
     ShapeParams params;
     params.divisions = 2;
-    TriangleMesh built = makeBuiltin(shape.substr(0, shape.find(' ')), params).mesh;
+    TriangleMesh made = makeBuiltin(shape.substr(0, shape.find(' ')), params).mesh;
     if (shape.find("without") != std::string::npos) {
-      built.normals.clear();
-      built.normalIndices.clear();
+      made.normals.clear();
+      made.normalIndices.clear();
     }
-    const auto mesh = std::make_shared<const TriangleMesh>(std::move(built));
+    const auto mesh = std::make_shared<const TriangleMesh>(std::move(made));
     // Which path each takes: the points are kept only where the ends need the adjacency.
     EXPECT_EQ(edgeEndsNeedTopology(*mesh), shape == "cube" || shape == "cylinder") << shape;
     const PnModel pn(mesh);
