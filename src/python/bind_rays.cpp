@@ -95,8 +95,7 @@ void forEachRay(size_t count, F f) {
   LibraryCall call;
   parallelForRange(tbb::blocked_range<size_t>(0, count, 256),
                    [&](const tbb::blocked_range<size_t>& range) {
-                     FloatModeGuard keep;
-                     enableFlushToZero();
+                     const FlushToZeroScope flushToZero;
                      for (size_t i = range.begin(); i != range.end(); ++i) f(i);
                    });
 }
