@@ -99,12 +99,14 @@ CornerStats cornerStats(const SurfaceModel& model) {
         bool anyConsistent = false;
         for (size_t t = range.begin(); t != range.end(); ++t) {
           const double orientation = patchOrientation(mesh, t);
+          std::array<SurfacePoint, 3> points;
+          model.evaluateMany(t, kCornerUv.data(), 3, points.data());
           for (int k = 0; k < 3; ++k) {
             ++s.corners;
             const Vec3 nk = mesh.cornerNormal(t, k);
             const bool consistent = consistentCorner(mesh, ends, t, k, orientation);
             s.inconsistent += !consistent;
-            const SurfacePoint p = model.evaluate(t, kCornerUv[k].x(), kCornerUv[k].y());
+            const SurfacePoint& p = points[size_t(k)];
             if (!allFinite(p.position) || !allFinite(p.normal)) {
               if (s.nonFinite++ == 0) {
                 s.firstNonFinitePatch = t;

@@ -163,6 +163,24 @@ Vec3 QuadraticPatch::edgePoint(int k, double t) const {
   return (1 - t) * (1 - t) * a + 2 * t * (1 - t) * b[k] + t * t * c;
 }
 
+bool edgeControlPointsAreLocal(const TriangleMesh& mesh) {
+  return mesh.hasNormals() && !edgeEndsNeedTopology(mesh);
+}
+
+std::array<Vec3, 3> localEdgeControlPoints(const TriangleMesh& mesh, size_t t, bool* gaveUp) {
+  std::array<Vec3, 3> b;
+  bool any = false;
+  for (int k = 0; k < 3; ++k) {
+    const int l = (k + 1) % 3;
+    bool edgeGaveUp = false;
+    b[size_t(k)] = edgeControlPoint(mesh.corner(t, k), mesh.cornerNormal(t, k), mesh.corner(t, l),
+                                    mesh.cornerNormal(t, l), &edgeGaveUp);
+    any = any || edgeGaveUp;
+  }
+  if (gaveUp) *gaveUp = any;
+  return b;
+}
+
 QuadraticPatch quadraticPatch(const TriangleMesh& mesh,
                               const std::vector<std::array<Vec3, 3>>& controlPoints, size_t t) {
   return QuadraticPatch{{mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)},

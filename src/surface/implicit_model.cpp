@@ -75,13 +75,23 @@ std::optional<Vec3> projectForBounds(const QuadricCoeffs& q, const QuadraticPatc
 ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
     : SurfaceModel(std::move(meshPtr)) {
   const TriangleMesh& m = mesh();
-  std::vector<uint8_t> fallbacks;
-  controlPoints_ = edgeControlPoints(m, &fallbacks);
-  setFallbacks(std::move(fallbacks));
   const size_t n = m.triangleCount();
+  // Where the control points follow from each triangle alone, none is kept and no adjacency is
+  // built: parametricPatch computes them again when asked.
+  const bool local = edgeControlPointsAreLocal(m);
+  std::vector<uint8_t> fallbacks;
+  if (local)
+    fallbacks.assign(n, 0);
+  else
+    controlPoints_ = edgeControlPoints(m, &fallbacks);
   resizeLarge(patches_, n);
   parallelFor(size_t(0), n, [&](size_t t) {
-    const QuadraticPatch fp = parametricPatch(t);
+    bool gaveUp = false;
+    const QuadraticPatch fp = local
+                                  ? QuadraticPatch{{m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)},
+                                                   localEdgeControlPoints(m, t, &gaveUp)}
+                                  : parametricPatch(t);
+    if (gaveUp) fallbacks[t] = 1;
     const double orient = patchOrientation(m, t);
     QuadricPatch& patch = patches_[t];
     patch.q = fitThesisQuadric(fp);
@@ -108,10 +118,20 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
     box.inflate(kBoundMargin * reach);
     patch.bounds = box;
   });
+  setFallbacks(std::move(fallbacks));
 }
 
 SurfacePoint ImplicitModel::evaluate(size_t t, double u, double v) const {
+  return evaluateOn(parametricPatch(t), t, u, v);
+}
+
+void ImplicitModel::evaluateMany(size_t t, const Vec2* uv, size_t count, SurfacePoint* out) const {
   const QuadraticPatch fp = parametricPatch(t);
+  for (size_t i = 0; i < count; ++i) out[i] = evaluateOn(fp, t, uv[i].x(), uv[i].y());
+}
+
+SurfacePoint ImplicitModel::evaluateOn(const QuadraticPatch& fp, size_t t, double u,
+                                       double v) const {
   const QuadricPatch& patch = patches_[t];
   const double orient = patchOrientation(mesh(), t);
   const Vec3 n = parametricNormal(fp, orient, u, v);

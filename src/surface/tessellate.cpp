@@ -330,7 +330,10 @@ class LatticeWalk {
   /// The surface point and normal of point i of triangle t; corners are the mesh's own
   /// vertices, bit for bit.
   std::pair<Vec3, Vec3> evaluate(size_t t, size_t i) const {
-    SurfacePoint sp = model_.evaluate(t, pattern_.uv[i].x(), pattern_.uv[i].y());
+    return finish(t, i, model_.evaluate(t, pattern_.uv[i].x(), pattern_.uv[i].y()));
+  }
+  /// evaluate(t, i) from the model's point sp at point i's (u, v).
+  std::pair<Vec3, Vec3> finish(size_t t, size_t i, SurfacePoint sp) const {
     const PointSite& s = pattern_.sites[i];
     if (s.kind == PointSite::Kind::Corner) sp.position = mesh_.corner(t, s.corner);
     return {sp.position, safeNormalized(sp.normal, mesh_.faceNormal(t))};
@@ -346,15 +349,26 @@ class LatticeWalk {
                      [&](const tbb::blocked_range<size_t>& range) {
                        std::vector<uint32_t> local(points());
                        std::vector<uint8_t> isNew(points()), split(points());
+                       // The points a triangle numbers, evaluated together (evaluateMany).
+                       std::vector<size_t> own;
+                       std::vector<Vec2> ownUv;
+                       std::vector<SurfacePoint> evaluated;
                        for (size_t t = range.begin(); t != range.end(); ++t) {
                          localPoints(t, local.data(), isNew.data(), split.data());
-                         if (positions)
-                           for (size_t i = 0; i < points(); ++i) {
-                             if (!isNew[i]) continue;
-                             const auto [p, nrm] = evaluate(t, i);
+                         if (positions) {
+                           own.clear();
+                           ownUv.clear();
+                           for (size_t i = 0; i < points(); ++i)
+                             if (isNew[i]) own.push_back(i), ownUv.push_back(pattern_.uv[i]);
+                           evaluated.resize(own.size());
+                           model_.evaluateMany(t, ownUv.data(), own.size(), evaluated.data());
+                           for (size_t j = 0; j < own.size(); ++j) {
+                             const size_t i = own[j];
+                             const auto [p, nrm] = finish(t, i, evaluated[j]);
                              positions[local[i] - base] = p;
                              normals[local[i] - base] = nrm;
                            }
+                         }
                          if (triangles)
                            for (size_t j = 0; j < trianglesPerPatch(); ++j) {
                              const Tri& tri = pattern_.triangles[j];

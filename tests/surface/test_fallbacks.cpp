@@ -79,6 +79,8 @@ TEST(Fallbacks, ExactCountOnAStepBetweenEqualNormals) {
   const size_t T = mesh->triangleCount(), k = trianglesAtLiftedVertex(*mesh);
   ASSERT_EQ(T, 32u);
   ASSERT_EQ(k, 6u);
+  // One normal a vertex: quadric-implicit finds its fallbacks triangle by triangle.
+  ASSERT_TRUE(edgeControlPointsAreLocal(*mesh));
   // Models whose edge curves must be tangent at both ends: exactly the six triangles at the
   // lifted vertex give up; the others have no edge there.
   for (const char* name :

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/implicit_model.h"
 #include "quadtri/surface/model.h"
 #include "surface_fixtures.h"
 
@@ -241,6 +243,60 @@ TEST(SmoothModels, DegenerateTrianglesStayFiniteAndBounded) {
           ASSERT_TRUE(allFinite(p.normal)) << name;
           EXPECT_NEAR(p.normal.norm(), 1.0, 1e-12) << name;
         }
+    }
+  }
+}
+
+TEST(SmoothModels, EvaluateManyIsEvaluateBitForBit) {
+  // Every model's batch evaluation gives what one call per point gives, on a smooth mesh and
+  // on one that splits normals (the models that rebuild a patch per call build it once).
+  const std::array<Vec2, 6> uv = {Vec2(0, 0),     Vec2(1, 0),     Vec2(0, 1),
+                                  Vec2(0.2, 0.3), Vec2(0.5, 0.5), Vec2(1.0 / 3, 1.0 / 3)};
+  for (const char* spec : {"icosphere:1", "cube"}) {
+    const auto mesh = std::make_shared<const TriangleMesh>(parseBuiltinSpec(spec)->mesh);
+    for (const std::string& name : modelNames()) {
+      const auto model = makeModel(name, mesh);
+      for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+        std::array<SurfacePoint, 6> many;
+        model->evaluateMany(t, uv.data(), uv.size(), many.data());
+        for (size_t i = 0; i < uv.size(); ++i) {
+          const SurfacePoint one = model->evaluate(t, uv[i].x(), uv[i].y());
+          EXPECT_TRUE(many[i].position == one.position && many[i].normal == one.normal)
+              << spec << " " << name << " patch " << t << " point " << i;
+        }
+      }
+    }
+  }
+}
+
+TEST(SmoothModels, LocalEdgeControlPointsAreTheSharedOnesBitForBit) {
+  // Where no vertex splits its normals, each triangle computes its edges' control points
+  // alone: the same bits, and the same give-ups, as solving each mesh edge once. A mesh that
+  // splits normals (cube) or has none (each side would use its own face normal) needs the
+  // adjacency, and quadric-implicit keeps those it solved.
+  struct Case {
+    const char* spec;
+    bool dropNormals, local;
+  };
+  for (const Case c : {Case{"icosphere:2", false, true}, Case{"torus:1,0.35,24,12", false, true},
+                       Case{"ellipsoid:1,0.7,0.5", false, true}, Case{"cube", false, false},
+                       Case{"icosphere:1", true, false}}) {
+    TriangleMesh made = parseBuiltinSpec(c.spec)->mesh;
+    if (c.dropNormals) made.normals.clear(), made.normalIndices.clear();
+    const auto mesh = std::make_shared<const TriangleMesh>(std::move(made));
+    ASSERT_EQ(edgeControlPointsAreLocal(*mesh), c.local) << c.spec;
+    std::vector<uint8_t> gaveUp;
+    const std::vector<std::array<Vec3, 3>> shared = edgeControlPoints(*mesh, &gaveUp);
+    const ImplicitModel implicit(mesh);
+    for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+      const QuadraticPatch fp = implicit.parametricPatch(t);
+      for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(fp.b[k] == shared[t][k]) << c.spec << t << k;
+      EXPECT_EQ(implicit.fellBack(t), gaveUp[t] != 0) << c.spec << t;
+      if (!c.local) continue;
+      bool localGaveUp = true;
+      const std::array<Vec3, 3> b = localEdgeControlPoints(*mesh, t, &localGaveUp);
+      for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(b[k] == shared[t][k]) << c.spec << t << k;
+      EXPECT_EQ(localGaveUp, gaveUp[t] != 0) << c.spec << t;
     }
   }
 }

@@ -49,6 +49,16 @@ std::vector<std::array<Vec3, 3>> edgeControlPoints(const TriangleMesh& mesh,
                                                    const MeshTopology& topo,
                                                    std::vector<uint8_t>* gaveUpPatches = nullptr);
 
+/// True where edgeControlPoints needs no adjacency: the mesh has normals and no vertex's corners
+/// carry different ones (creases.h, edgeEndsNeedTopology), so each edge's control point follows
+/// from the corners and normals either of its triangles holds.
+bool edgeControlPointsAreLocal(const TriangleMesh& mesh);
+/// Triangle t's three edge control points on such a mesh, bit for bit what edgeControlPoints
+/// gives it (edgeControlPoint orders an edge's ends canonically, so both sides compute the same
+/// point); `gaveUp`, when given, is set to whether one of them gave up its tangent planes.
+std::array<Vec3, 3> localEdgeControlPoints(const TriangleMesh& mesh, size_t t,
+                                           bool* gaveUp = nullptr);
+
 /// The quadratic Bézier triangle with corners v[k] and edge control points b[k] (edge k joins
 /// corners k and k+1), in barycentric (u, v) with corner 0 at (0,0), 1 at (1,0), 2 at (0,1).
 /// This is the thesis' §4.2 parametric quadric triangle

@@ -27,6 +27,7 @@ class ImplicitModel final : public SurfaceModel {
   /// within one longest edge of f_p(u,v) (the quadric misses that part of the patch), f_p(u,v)
   /// itself with f_p's normal is returned.
   SurfacePoint evaluate(size_t t, double u, double v) const override;
+  void evaluateMany(size_t t, const Vec2* uv, size_t count, SurfacePoint* out) const override;
   Representation representation() const override { return Representation::Implicit; }
   const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
   size_t patchMemoryBytes() const override { return sizeof(QuadricPatch) * patches_.size(); }
@@ -34,14 +35,21 @@ class ImplicitModel final : public SurfaceModel {
   ///  "parametric": {"c": [c0..c5]}, "control_points": [b01, b12, b20]}.
   nlohmann::json patchJson(size_t t) const override;
 
-  /// The §4.2 parametric patch f_p that patch t was fitted to (from the triangle's corners and
-  /// its edges' control points, which are all the model keeps of it).
+  /// The §4.2 parametric patch f_p that patch t was fitted to: the triangle's corners and its
+  /// edges' control points, kept where they need the mesh's adjacency and computed again
+  /// (localEdgeControlPoints) where they do not.
   QuadraticPatch parametricPatch(size_t t) const {
+    if (controlPoints_.empty())
+      return {{mesh().corner(t, 0), mesh().corner(t, 1), mesh().corner(t, 2)},
+              localEdgeControlPoints(mesh(), t)};
     return quadraticPatch(mesh(), controlPoints_, t);
   }
 
  private:
-  std::vector<std::array<Vec3, 3>> controlPoints_;  ///< edgeControlPoints(), per triangle
+  SurfacePoint evaluateOn(const QuadraticPatch& fp, size_t t, double u, double v) const;
+
+  /// edgeControlPoints(), per triangle; empty where edgeControlPointsAreLocal.
+  std::vector<std::array<Vec3, 3>> controlPoints_;
   std::vector<QuadricPatch> patches_;
 };
 

@@ -56,6 +56,12 @@ class SurfaceModel {
     for (size_t i = 0; i < count; ++i) out[i] = position(t, uv[i].x(), uv[i].y());
   }
 
+  /// out[i] = evaluate(t, uv[i].x(), uv[i].y()) for i < count, bit for bit; the models that
+  /// rebuild a patch from the mesh per call build it once here.
+  virtual void evaluateMany(size_t t, const Vec2* uv, size_t count, SurfacePoint* out) const {
+    for (size_t i = 0; i < count; ++i) out[i] = evaluate(t, uv[i].x(), uv[i].y());
+  }
+
   virtual Representation representation() const { return Representation::Tessellated; }
   /// True when neighbouring patches share their boundary curves, so a tessellation may weld
   /// boundary vertices (false only for reproductions that are known to crack).

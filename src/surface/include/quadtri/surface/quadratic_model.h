@@ -19,6 +19,7 @@ namespace quadtri {
 class QuadraticPatchModel : public SurfaceModel {
  public:
   SurfacePoint evaluate(size_t t, double u, double v) const final;
+  void evaluateMany(size_t t, const Vec2* uv, size_t count, SurfacePoint* out) const final;
   Vec3 position(size_t t, double u, double v) const final;
   void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const final;
 
