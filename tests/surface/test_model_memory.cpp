@@ -5,6 +5,7 @@
 #include "quadtri/surface/bezier_intersect.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/model_memory.h"
+#include "quadtri/surface/quadric_patch.h"
 #include "quadtri/surface/tessellate.h"
 
 namespace quadtri {
@@ -33,6 +34,13 @@ TEST(ModelMemory, EveryModelHasItsOwnCost) {
     dearest = std::max(dearest, b);
   }
   EXPECT_EQ(modelBytesPerTriangle("no-such-model", fine, ModelUse::Render), dearest);
+}
+
+// A quadric patch's record: a 16-byte header (bridge sides, plane count and the float sign),
+// the ten coefficients, the box, six planes and the base plane, with no padding between them.
+TEST(ModelMemory, QuadricPatchRecordHasNoPadding) {
+  EXPECT_EQ(sizeof(QuadricPatch), 16 + 10 * 8 + 6 * 8 + QuadricPatch::kMaxPlanes * 32 + 32);
+  EXPECT_EQ(sizeof(QuadricPatch), 368u);
 }
 
 // An automatic tessellation is charged at level 1 before the mesh is loaded, and what the level

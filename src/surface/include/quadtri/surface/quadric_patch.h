@@ -45,10 +45,13 @@ struct QuadricPatch {
   /// For a bridge between patches with a `base`: the plane of each joined patch (an index into
   /// its planes) that the bridge lies in; see bridgeCovers.
   std::array<int8_t, 2> joinPlanes{-1, -1};
-  int planeCount = 0;
+  int16_t planeCount = 0;
+  /// ±1: the sign that makes the gradient of q point out of the solid. A float, exact for ±1,
+  /// so that it shares the header's 16 bytes (a double here costs the record 16 bytes of
+  /// alignment: the planes are 16-byte aligned).
+  float orientation = 1.0f;
   QuadricCoeffs q{};
   Bounds3 bounds;
-  double orientation = 1.0;
   /// (n, d) with inside n·x + d >= 0 (Eigen leaves `{}` uninitialised: zero them explicitly).
   std::array<Vec4, kMaxPlanes> planes = [] {
     std::array<Vec4, kMaxPlanes> zero;
