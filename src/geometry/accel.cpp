@@ -166,7 +166,7 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
                                   const TriangleMesh* mesh) {
   if (impl_->committed)
     fail("adding quadric patches: the acceleration structure is already committed");
-  // Checked in parallel blocks (a record each, 384 MB on a million triangles); the error names
+  // Checked in parallel blocks (a record each, 368 MB on a million triangles); the error names
   // the first bad patch, as a scan in order would.
   struct Scan {
     size_t firstBad = SIZE_MAX;
