@@ -185,24 +185,23 @@ constexpr double kSameSideCos = 0.5;
 // triangles do; each part stays closed (and crack_rate counts hits of triangles that share no
 // vertex as separate crossings). Of an overlapping pair only the triangle whose patch reaches
 // farther (relative to its size) is flagged, unless `both`. Only pairs with a core that
-// `changed` are tested. Candidate pairs from a uniform grid of
-// the cells' boxes (spacing: the mean edge length).
-template <class FlatCore>
-std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<ConvexCell>& cells,
-                                   const FlatCore& flatCore, const std::vector<Vec3>& faceNormals,
+// `changed` are tested. Candidate pairs from a uniform grid of the cells' boxes (`boxes`, those
+// of core(t); spacing: the mean edge length); a cell itself is built (core(t)) only for the
+// pairs whose boxes meet, so that no array of cells is held (656 bytes a triangle).
+template <class Core, class FlatCore>
+std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<Bounds3>& boxes,
+                                   const Core& core, const FlatCore& flatCore,
+                                   const std::vector<Vec3>& faceNormals,
                                    const std::vector<uint32_t>& part,
                                    const std::vector<double>& reach,
                                    const std::vector<char>& changed, bool both) {
-  const size_t n = cells.size();
+  const size_t n = boxes.size();
   std::vector<char> out(n, 0);
   const double spacing = mesh.meanEdgeLength();
   if (!(spacing > 0.0)) return out;
-  std::vector<Bounds3> boxes(n);
   Bounds3 all;
-  for (size_t t = 0; t < n; ++t) {
-    boxes[t] = cells[t].bounds();
+  for (size_t t = 0; t < n; ++t)
     if (!boxes[t].empty()) all.extend(boxes[t]);
-  }
   if (all.empty()) return out;
   using Key = std::array<int64_t, 3>;
   const auto cellOf = [&](const Vec3& p) {
@@ -267,7 +266,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<C
     if (faceNormals[a].dot(faceNormals[b]) > kSameSideCos || part[a] != part[b]) return;
     const double tolerance = 1e-9 * std::min(mesh.meanEdgeLength(a), mesh.meanEdgeLength(b));
     // Triangles that cross each other (or nearly) keep crossing whatever their patches do.
-    hit[i] = cellsOverlap(cells[a], cells[b], tolerance) &&
+    hit[i] = cellsOverlap(core(a), core(b), tolerance) &&
              !cellsOverlap(flatCore(a), flatCore(b), tolerance);
   });
   for (size_t i = 0; i < pairs.size(); ++i) {
@@ -366,7 +365,21 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   for (size_t t = 0; t < m.triangleCount(); ++t) fitted[t] = patches_[t].q;
   std::vector<double> reach(m.triangleCount(), kInfinity);
   std::vector<char> redo(m.triangleCount(), 1);
-  std::vector<ConvexCell> cores = largeVector<ConvexCell>(m.triangleCount());
+  // A triangle's core: its cell cut down to the heights of its patch and of the region between
+  // the patch and the triangle (what the patch and its bridges can reach). Only its box is kept
+  // (coreBoxes); overlappingCells builds the core again for the rare pairs whose boxes meet.
+  const auto core = [&](size_t t) {
+    if (cells[t].empty()) return ConvexCell();
+    const Frame& frame = frames_[t];
+    const QuadricPatch& patch = patches_[t];
+    const Vec3& n = frame.faceNormal;
+    const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
+    FixedVector<Vec4, 5> planes(patch.planes.begin(), patch.planes.begin() + 3);
+    planes.push_back(Vec4(n.x(), n.y(), n.z(), -h - frame.coreLo));
+    planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + frame.coreHi));
+    return makeConvexCell(planes, cells[t].tolerance);
+  };
+  std::vector<Bounds3> coreBoxes = largeVector<Bounds3>(m.triangleCount());
   // A triangle's flat core: its cell cut down to a slab of 1e-6 of its size around it. Only
   // the rare pairs whose cores overlap need one, so it is built there, not kept for every
   // triangle.
@@ -388,21 +401,9 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
       if (redo[t]) choosePatch(t, fitted[t], pencils[t], reach[t], cells[t]);
     });
-    // The cores: each cell cut down to the heights of its patch and of the region between
-    // the patch and the triangle (what the patch and its bridges can reach); only those of the
-    // patches chosen again change.
+    // The cores' boxes: only those of the patches chosen again change.
     parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
-      if (!redo[t]) return;
-      cores[t] = ConvexCell();
-      if (cells[t].empty()) return;
-      const Frame& frame = frames_[t];
-      const QuadricPatch& patch = patches_[t];
-      const Vec3& n = frame.faceNormal;
-      const double h = n.dot((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0);
-      FixedVector<Vec4, 5> planes(patch.planes.begin(), patch.planes.begin() + 3);
-      planes.push_back(Vec4(n.x(), n.y(), n.z(), -h - frame.coreLo));
-      planes.push_back(Vec4(-n.x(), -n.y(), -n.z(), h + frame.coreHi));
-      cores[t] = makeConvexCell(planes, cells[t].tolerance);
+      if (redo[t]) coreBoxes[t] = core(t).bounds();
     });
     // The first half of the rounds shrinks only the farther-reaching patch of each pair (often
     // enough to part them), the rest both, as before.
@@ -412,8 +413,9 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
       faceNormals[t] = frames_[t].faceNormal;
       reaches[t] = frames_[t].reach;
     }
-    const std::vector<char> overlapping = overlappingCells(
-        m, cores, flatCore, faceNormals, part, reaches, redo, round >= kOverlapRounds / 2);
+    const std::vector<char> overlapping =
+        overlappingCells(m, coreBoxes, core, flatCore, faceNormals, part, reaches, redo,
+                         round >= kOverlapRounds / 2);
     bool any = false;
     for (size_t t = 0; t < m.triangleCount(); ++t) {
       redo[t] = overlapping[t];
