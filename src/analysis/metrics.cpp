@@ -19,13 +19,15 @@ namespace {
 // Barycentric (u, v) of corner k: (0,0), (1,0), (0,1).
 const std::array<Vec2, 3> kCornerUv = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
 
-// The model's surface point, refusing non-finite results so that no NaN reaches a metric.
-SurfacePoint evaluateChecked(const SurfaceModel& model, size_t t, const Vec2& uv) {
-  const SurfacePoint p = model.evaluate(t, uv.x(), uv.y());
-  if (!allFinite(p.position) || !allFinite(p.normal))
-    fail("model '{}': patch {} is not finite at (u, v) = ({}, {})", model.name(), t, uv.x(),
-         uv.y());
-  return p;
+// The model's surface points at uv[0..count) of patch t (evaluateMany: the patch built once),
+// refusing non-finite results so that no NaN reaches a metric.
+void evaluateCheckedMany(const SurfaceModel& model, size_t t, const Vec2* uv, size_t count,
+                         SurfacePoint* out) {
+  model.evaluateMany(t, uv, count, out);
+  for (size_t i = 0; i < count; ++i)
+    if (!allFinite(out[i].position) || !allFinite(out[i].normal))
+      fail("model '{}': patch {} is not finite at (u, v) = ({}, {})", model.name(), t, uv[i].x(),
+           uv[i].y());
 }
 
 double meanEdgeLength(const SurfaceModel& model) {
@@ -51,11 +53,11 @@ double maxOverPatches(const SurfaceModel& model, const F& f) {
 double vertexPositionError(const SurfaceModel& model) {
   const double scale = meanEdgeLength(model);
   return maxOverPatches(model, [&](size_t t) {
+    std::array<SurfacePoint, 3> corners;
+    evaluateCheckedMany(model, t, kCornerUv.data(), 3, corners.data());
     double worst = 0.0;
     for (int k = 0; k < 3; ++k)
-      worst = std::max(
-          worst,
-          (evaluateChecked(model, t, kCornerUv[k]).position - model.mesh().corner(t, k)).norm());
+      worst = std::max(worst, (corners[size_t(k)].position - model.mesh().corner(t, k)).norm());
     return worst / scale;
   });
 }
@@ -85,11 +87,17 @@ std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
   const double scale = meanEdgeLength(model);
   // Point at parameter s from the edge's first vertex `a`, on side (t, k): local edge k runs
   // from corner k to corner k+1, so a side that starts at the other vertex runs backwards.
-  auto sidePoint = [&](const Edge& e, std::pair<uint32_t, uint8_t> side, double s) {
+  // The points of `samples` parameters s = j / (samples - 1) on side (t, k), evaluated
+  // together into `points` (uv: a buffer for their (u, v)).
+  auto sidePoints = [&](const Edge& e, std::pair<uint32_t, uint8_t> side, std::vector<Vec2>& uv,
+                        std::vector<SurfacePoint>& points) {
     const auto [t, k] = side;
-    const double local = mesh.triangles[t][k] == e.a ? s : 1.0 - s;
-    const Vec2 uv = (1.0 - local) * kCornerUv[k] + local * kCornerUv[(k + 1) % 3];
-    return evaluateChecked(model, t, uv);
+    for (int j = 0; j < samples; ++j) {
+      const double s = double(j) / (samples - 1);
+      const double local = mesh.triangles[t][k] == e.a ? s : 1.0 - s;
+      uv[size_t(j)] = (1.0 - local) * kCornerUv[k] + local * kCornerUv[(k + 1) % 3];
+    }
+    evaluateCheckedMany(model, t, uv.data(), uv.size(), points.data());
   };
   // Per block: the continuity so far, plus the smooth edges seen and how many were G1.
   struct Partial {
@@ -121,13 +129,17 @@ std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
   Partial total = parallelReduce(
       tbb::blocked_range<size_t>(0, topology.edges.size()), Partial(),
       [&](const tbb::blocked_range<size_t>& range, Partial best) {
+        const size_t count = static_cast<size_t>(samples);
+        std::vector<Vec2> uv(count);
+        std::vector<SurfacePoint> sideA(count), sideB(count);
         for (size_t i = range.begin(); i != range.end(); ++i) {
           const Edge& e = topology.edges[i];
           if (e.sides.size() != 2) continue;
           EdgeContinuity c;
-          for (int j = 0; j < samples; ++j) {
-            const double s = double(j) / (samples - 1);
-            const SurfacePoint pa = sidePoint(e, e.sides[0], s), pb = sidePoint(e, e.sides[1], s);
+          sidePoints(e, e.sides[0], uv, sideA);
+          sidePoints(e, e.sides[1], uv, sideB);
+          for (size_t j = 0; j < count; ++j) {
+            const SurfacePoint &pa = sideA[j], &pb = sideB[j];
             c.c0Gap = std::max(c.c0Gap, (pa.position - pb.position).norm() / scale);
             c.c1AngleDeg = std::max(c.c1AngleDeg, angleDegrees(pa.normal, pb.normal));
           }
@@ -156,15 +168,21 @@ std::optional<EdgeContinuity> edgeContinuity(const SurfaceModel& model,
 double truthDistance(const SurfaceModel& model, const AnalyticSurface& truth, int level) {
   if (level < 1) fail("truth distance: the lattice level must be at least 1, got {}", level);
   const double size = truth.size();
-  return maxOverPatches(model, [&](size_t t) {
-    double worst = 0.0;
-    for (int j = 0; j <= level; ++j)
-      for (int i = 0; i + j <= level; ++i) {
-        const Vec2 uv(double(i) / level, double(j) / level);
-        worst = std::max(worst, truth.distance(evaluateChecked(model, t, uv).position) / size);
-      }
-    return worst;
-  });
+  std::vector<Vec2> lattice;
+  for (int j = 0; j <= level; ++j)
+    for (int i = 0; i + j <= level; ++i) lattice.emplace_back(double(i) / level, double(j) / level);
+  return parallelReduce(
+      tbb::blocked_range<size_t>(0, model.patchCount()), 0.0,
+      [&](const tbb::blocked_range<size_t>& range, double worst) {
+        std::vector<SurfacePoint> points(lattice.size());
+        for (size_t t = range.begin(); t != range.end(); ++t) {
+          evaluateCheckedMany(model, t, lattice.data(), lattice.size(), points.data());
+          for (const SurfacePoint& p : points)
+            worst = std::max(worst, truth.distance(p.position) / size);
+        }
+        return worst;
+      },
+      [](double a, double b) { return std::max(a, b); });
 }
 
 std::string crackRateUndefinedReason(const MeshTopology& topology) {

@@ -130,6 +130,11 @@ void ImplicitModel::evaluateMany(size_t t, const Vec2* uv, size_t count, Surface
   for (size_t i = 0; i < count; ++i) out[i] = evaluateOn(fp, t, uv[i].x(), uv[i].y());
 }
 
+void ImplicitModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const {
+  const QuadraticPatch fp = parametricPatch(t);
+  for (size_t i = 0; i < count; ++i) out[i] = evaluateOn(fp, t, uv[i].x(), uv[i].y()).position;
+}
+
 SurfacePoint ImplicitModel::evaluateOn(const QuadraticPatch& fp, size_t t, double u,
                                        double v) const {
   const QuadricPatch& patch = patches_[t];

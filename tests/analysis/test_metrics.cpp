@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "fixtures/sphere_patches.h"
 #include "quadtri/analysis/metrics.h"
@@ -158,6 +160,52 @@ class SphereProjection final : public SurfaceModel {
   Representation representation_;
   std::vector<QuadricPatch> patches_;
 };
+
+// The flat triangle, except at one corner of one patch, where it is not finite.
+class NotFiniteAtOneCorner final : public SurfaceModel {
+ public:
+  NotFiniteAtOneCorner(std::shared_ptr<const TriangleMesh> mesh, size_t patch)
+      : SurfaceModel(std::move(mesh)), patch_(patch) {}
+  std::string_view name() const override { return "not-finite"; }
+  SurfacePoint evaluate(size_t t, double u, double v) const override {
+    const TriangleMesh& m = mesh();
+    Vec3 p = (1 - u - v) * m.corner(t, 0) + u * m.corner(t, 1) + v * m.corner(t, 2);
+    if (t == patch_ && u == 1.0 && v == 0.0) p.y() = std::nan("");
+    return {p, m.faceNormal(t)};
+  }
+  nlohmann::json patchJson(size_t) const override { return {}; }
+
+ private:
+  size_t patch_;
+};
+
+TEST(Metrics, RefuseAPatchThatIsNotFiniteNamingThePoint) {
+  // Each metric that evaluates patch points (several at a time) names the first that is not
+  // finite, and reports no value.
+  ShapeParams p;
+  p.level = 1;
+  const BuiltinMesh sphere = makeBuiltin("icosphere", p);
+  const auto mesh = std::make_shared<const TriangleMesh>(sphere.mesh);
+  const NotFiniteAtOneCorner model(mesh, 7);
+  const std::string expected = "patch 7 is not finite at (u, v) = (1, 0)";
+  const auto message = [](const auto& run) {
+    try {
+      run();
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { vertexPositionError(model); }).find(expected), std::string::npos);
+  EXPECT_NE(message([&] { truthDistance(model, *sphere.truth, 4); }).find(expected),
+            std::string::npos);
+  EXPECT_NE(message([&] { edgeContinuity(model, MeshTopology(*mesh), 5); }).find(expected),
+            std::string::npos);
+  // Without the bad point every one of them has a value.
+  const NotFiniteAtOneCorner fine(mesh, mesh->triangleCount());
+  EXPECT_EQ(vertexPositionError(fine), 0.0);
+  EXPECT_TRUE(edgeContinuity(fine, MeshTopology(*mesh), 5).has_value());
+}
 
 TEST(Metrics, TessellatedModelMeetingEveryConstraint) {
   ShapeParams p;

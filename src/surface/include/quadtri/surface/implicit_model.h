@@ -28,6 +28,7 @@ class ImplicitModel final : public SurfaceModel {
   /// itself with f_p's normal is returned.
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   void evaluateMany(size_t t, const Vec2* uv, size_t count, SurfacePoint* out) const override;
+  void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   Representation representation() const override { return Representation::Implicit; }
   const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
   size_t patchMemoryBytes() const override { return sizeof(QuadricPatch) * patches_.size(); }

@@ -47,8 +47,8 @@ struct QuadricPatch {
   std::array<int8_t, 2> joinPlanes{-1, -1};
   int16_t planeCount = 0;
   /// ±1: the sign that makes the gradient of q point out of the solid. A float, exact for ±1,
-  /// so that it shares the header's 16 bytes (a double here costs the record 16 bytes of
-  /// alignment: the planes are 16-byte aligned).
+  /// so that it shares the header's 16 bytes (a double after the box cost the record 16 bytes
+  /// of alignment before the planes, which are Vec4-aligned).
   float orientation = 1.0f;
   QuadricCoeffs q{};
   Bounds3 bounds;
