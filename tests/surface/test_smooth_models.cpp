@@ -4,6 +4,9 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
+#include <random>
+#include <string>
 
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
@@ -269,6 +272,54 @@ TEST(SmoothModels, EvaluateManyIsEvaluateBitForBit) {
   }
 }
 
+// An open 6×6 grid with noisy heights and one random normal per vertex (up to about 80° from
+// +z, so that some edges' control points give up their tangent planes), a triangle with a
+// repeated corner and a fin on one of its edges (a non-manifold edge).
+std::shared_ptr<const TriangleMesh> roughOpenMesh() {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> height(-0.3, 0.3), tilt(-4.0, 4.0);
+  TriangleMesh mesh;
+  const int n = 6;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) mesh.positions.push_back(Vec3(i, j, height(rng)));
+  const auto at = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      mesh.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  mesh.triangles.push_back({at(0, 0), at(0, 0), at(1, 0)});
+  mesh.positions.push_back(Vec3(2.5, 2.0, 1.0));
+  mesh.triangles.push_back({at(2, 2), at(3, 2), uint32_t(mesh.positions.size() - 1)});
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    mesh.normals.push_back(Vec3(tilt(rng), tilt(rng), 1.0).normalized());
+  mesh.normalIndices = mesh.triangles;
+  return std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
+// Checks quadric-implicit's control points and fallbacks against edgeControlPoints on `mesh`,
+// and localEdgeControlPoints too where they are local; returns the triangles that gave up.
+size_t checkControlPoints(const std::shared_ptr<const TriangleMesh>& mesh,
+                          const std::string& label) {
+  std::vector<uint8_t> gaveUp;
+  const std::vector<std::array<Vec3, 3>> shared = edgeControlPoints(*mesh, &gaveUp);
+  const ImplicitModel implicit(mesh);
+  const bool local = edgeControlPointsAreLocal(*mesh);
+  size_t gaveUpCount = 0;
+  for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+    gaveUpCount += gaveUp[t] != 0;
+    const QuadraticPatch fp = implicit.parametricPatch(t);
+    for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(fp.b[k] == shared[t][k]) << label << t << k;
+    EXPECT_EQ(implicit.fellBack(t), gaveUp[t] != 0) << label << t;
+    if (!local) continue;
+    bool localGaveUp = true;
+    const std::array<Vec3, 3> b = localEdgeControlPoints(*mesh, t, &localGaveUp);
+    for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(b[k] == shared[t][k]) << label << t << k;
+    EXPECT_EQ(localGaveUp, gaveUp[t] != 0) << label << t;
+  }
+  return gaveUpCount;
+}
+
 TEST(SmoothModels, LocalEdgeControlPointsAreTheSharedOnesBitForBit) {
   // Where no vertex splits its normals, each triangle computes its edges' control points
   // alone: the same bits, and the same give-ups, as solving each mesh edge once. A mesh that
@@ -285,20 +336,14 @@ TEST(SmoothModels, LocalEdgeControlPointsAreTheSharedOnesBitForBit) {
     if (c.dropNormals) made.normals.clear(), made.normalIndices.clear();
     const auto mesh = std::make_shared<const TriangleMesh>(std::move(made));
     ASSERT_EQ(edgeControlPointsAreLocal(*mesh), c.local) << c.spec;
-    std::vector<uint8_t> gaveUp;
-    const std::vector<std::array<Vec3, 3>> shared = edgeControlPoints(*mesh, &gaveUp);
-    const ImplicitModel implicit(mesh);
-    for (size_t t = 0; t < mesh->triangleCount(); ++t) {
-      const QuadraticPatch fp = implicit.parametricPatch(t);
-      for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(fp.b[k] == shared[t][k]) << c.spec << t << k;
-      EXPECT_EQ(implicit.fellBack(t), gaveUp[t] != 0) << c.spec << t;
-      if (!c.local) continue;
-      bool localGaveUp = true;
-      const std::array<Vec3, 3> b = localEdgeControlPoints(*mesh, t, &localGaveUp);
-      for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(b[k] == shared[t][k]) << c.spec << t << k;
-      EXPECT_EQ(localGaveUp, gaveUp[t] != 0) << c.spec << t;
-    }
+    checkControlPoints(mesh, c.spec);
   }
+  // Boundary edges, a non-manifold fin, a repeated corner and edges that give up.
+  const auto rough = roughOpenMesh();
+  ASSERT_TRUE(edgeControlPointsAreLocal(*rough));
+  const size_t gaveUp = checkControlPoints(rough, "rough");
+  EXPECT_GT(gaveUp, 0u);
+  EXPECT_LT(gaveUp, rough->triangleCount());
 }
 
 }  // namespace
