@@ -350,7 +350,6 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
     for (int k = 0; k < 3; ++k) {
       const SharedEdge& edge = edges[topo.edgeOf[t][k]];
       frame.edgeDirection[k] = edge.direction;
-      frame.edgePlane[k] = edge.plane;
       frame.crease[k] = edge.crease;
       // Inside is the side of the opposite corner; the neighbour across the edge gets the
       // same plane negated (exactly).
@@ -521,7 +520,9 @@ Vec3 RobustImplicitModel::position(size_t t, double u, double v) const {
     const Vec3 base = start;
     for (int k = 0; k < 3; ++k) {
       const double wk = l[k] * l[(k + 1) % 3] / wsum;
-      const Vec4& plane = frame.edgePlane[k];
+      // The edge's plane, either way round: the patch's clip plane k (only its sign differs
+      // from the edge's, and the step below is the same, bit for bit, for either sign).
+      const Vec4& plane = patch.planes[size_t(k)];
       start -= wk * (plane.head<3>().dot(base) + plane[3]) * plane.head<3>();
       dir += wk * frame.edgeDirection[k];
     }

@@ -95,7 +95,6 @@ class RobustImplicitModel final : public SurfaceModel {
   struct Frame {
     QuadraticPatch parametric;
     std::array<Vec3, 3> edgeDirection;
-    std::array<Vec4, 3> edgePlane;
     /// The edge's two sides have different corner normals at an end (a crease splits them).
     std::array<bool, 3> crease{};
     Vec3 faceNormal;
