@@ -345,7 +345,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
     QuadricPatch& patch = patches_[t];
-    frame.parametric = quadraticPatch(m, controlPoints, t);
+    frame.controlPoints = controlPoints[t];
     frame.faceNormal = sides[t] * m.faceNormal(t);
     for (int k = 0; k < 3; ++k) {
       const SharedEdge& edge = edges[topo.edgeOf[t][k]];
@@ -520,7 +520,10 @@ Vec3 RobustImplicitModel::position(size_t t, double u, double v) const {
   // clipped boundary. (Corners lie on all their planes: nothing moves there.)
   const double l[3] = {1.0 - u - v, u, v};
   const double wsum = l[0] * l[1] + l[1] * l[2] + l[2] * l[0];
-  Vec3 start = frame.parametric.position(u, v);
+  const TriangleMesh& m = mesh();
+  const QuadraticPatch parametric{{m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)},
+                                  frame.controlPoints};
+  Vec3 start = parametric.position(u, v);
   Vec3 dir = Vec3::Zero();
   if (wsum > 0.0) {
     const Vec3 base = start;

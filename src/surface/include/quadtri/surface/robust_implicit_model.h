@@ -89,11 +89,12 @@ class RobustImplicitModel final : public SurfaceModel {
   double cornerNormalErrorDeg(size_t t) const { return frames_[t].cornerNormalErrorDeg; }
 
  private:
-  /// What evaluate needs beyond the quadric: f_p, the projection direction in each edge plane
-  /// and the unit face normal, on the side of its part of the mesh that most shading normals
-  /// point to (the winding, made consistent across the part: faceSides).
+  /// What evaluate needs beyond the quadric: f_p (its control points), the projection direction in
+  /// each edge plane and the unit face normal, on the side of its part of the mesh that most
+  /// shading normals point to (the winding, made consistent across the part: faceSides).
   struct Frame {
-    QuadraticPatch parametric;
+    /// The edge control points of the thesis' parametric patch f_p; its corners are the mesh's.
+    std::array<Vec3, 3> controlPoints;
     std::array<Vec3, 3> edgeDirection;
     /// The edge's two sides have different corner normals at an end (a crease splits them).
     std::array<bool, 3> crease{};
