@@ -53,12 +53,6 @@ nlohmann::json conversion(const PyModel& m) {
   return conversionJson(*m.model, m.tessellation);
 }
 
-py::array recordsOf(const nlohmann::json& list, const nlohmann::json& empty) {
-  std::vector<nlohmann::json> records;
-  if (list.is_array()) records.assign(list.begin(), list.end());
-  return recordsFromJson(records, empty);
-}
-
 }  // namespace
 
 void bindModel(py::module_& m) {
@@ -217,7 +211,11 @@ OBJ/PLY file (0 otherwise). The file appears whole or not at all.
       .def(
           "patches",
           [](const PyModel& p) {
-            return recordsOf(conversion(p)["patches"], nlohmann::json::object());
+            const PackedRecords packed = [&] {
+              LibraryCall call;
+              return packedPatches(*p.model);
+            }();
+            return recordsFromBytes(packed.layout, packed.bytes.data(), packed.count);
           },
           R"doc(
 Every patch's data as a numpy structured array, one record per input triangle, one field per key
@@ -230,9 +228,11 @@ and p["orientation"]; nested JSON objects are nested fields (p["control_points"]
       .def(
           "bridges",
           [](const PyModel& p) {
-            const nlohmann::json j = conversion(p);
-            return recordsOf(j.contains("bridges") ? j["bridges"] : nlohmann::json::array(),
-                             emptyBridgeRecord());
+            const PackedRecords packed = [&] {
+              LibraryCall call;
+              return packedBridges(*p.model);
+            }();
+            return recordsFromBytes(packed.layout, packed.bytes.data(), packed.count);
           },
           R"doc(
 The edge bridges of quadric-implicit-robust as a structured array (empty for other models and where

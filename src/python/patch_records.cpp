@@ -85,12 +85,4 @@ py::array recordsFromBytes(const RecordLayout& layout, const char* bytes, size_t
   return out;
 }
 
-py::array recordsFromJson(const std::vector<nlohmann::json>& records, const nlohmann::json& empty) {
-  const RecordLayout layout = recordLayout(records, empty);
-  std::vector<char> bytes(records.size() * layout.itemSize());
-  for (size_t i = 0; i < records.size(); ++i)
-    layout.fill(records[i], bytes.data() + i * layout.itemSize());
-  return recordsFromBytes(layout, bytes.data(), records.size());
-}
-
 }  // namespace quadtri::python

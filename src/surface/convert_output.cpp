@@ -10,6 +10,7 @@
 #include "quadtri/math/error.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/mesh_io.h"
+#include "quadtri/surface/patch_record.h"
 #include "quadtri/surface/patch_table.h"
 #include "quadtri/surface/quadric_patch.h"
 
@@ -31,25 +32,28 @@ std::string tessellationName(const Tessellation& tessellation) {
 
 namespace {
 
-nlohmann::json bridgeJsonOf(const QuadricPatch& b) {
-  nlohmann::json bridge;
-  bridge["joins"] = {b.joins[0], b.joins[1]};
-  bridge["plane"] = {b.q[6], b.q[7], b.q[8], b.q[9]};
-  bridge["join_planes"] = {b.joinPlanes[0], b.joinPlanes[1]};
-  bridge["planes"] = nlohmann::json::array();
-  for (int k = 0; k < b.planeCount; ++k)
-    bridge["planes"].push_back({b.planes[k][0], b.planes[k][1], b.planes[k][2], b.planes[k][3]});
-  bridge["bounds"] = {{"min", {b.bounds.lo.x(), b.bounds.lo.y(), b.bounds.lo.z()}},
-                      {"max", {b.bounds.hi.x(), b.bounds.hi.y(), b.bounds.hi.z()}}};
-  return bridge;
+void bridgeRecordOf(const QuadricPatch& b, PatchRecord& out) {
+  const PatchRecord::Ref root = PatchRecord::kRoot;
+  const PatchRecord::Ref joins = out.setArray(root, "joins");
+  out.pushInt(joins, b.joins[0]);
+  out.pushInt(joins, b.joins[1]);
+  out.set(root, "plane", b.q.data() + 6, 4);
+  const PatchRecord::Ref joinPlanes = out.setArray(root, "join_planes");
+  out.pushInt(joinPlanes, b.joinPlanes[0]);
+  out.pushInt(joinPlanes, b.joinPlanes[1]);
+  const PatchRecord::Ref planes = out.setArray(root, "planes");
+  for (int k = 0; k < b.planeCount; ++k) out.push(planes, b.planes[k].data(), 4);
+  const PatchRecord::Ref bounds = out.setObject(root, "bounds");
+  out.set(bounds, "min", b.bounds.lo);
+  out.set(bounds, "max", b.bounds.hi);
 }
 
 bool writesBridges(const SurfaceModel& model) {
   return model.name() == std::string_view("quadric-implicit-robust");
 }
 
-// Writes "[item(0),item(1),...]": the items dumped in parallel, kChunk at a time, and written
-// in order, so that at most one chunk of text is held.
+// Writes "[item(0),item(1),...]": the records item(i, record) dumped in parallel, kChunk at a
+// time, and written in order, so that at most one chunk of text is held.
 template <typename Item>
 void writeArray(std::ostream& out, size_t count, const Item& item) {
   constexpr size_t kChunk = 4096;
@@ -58,7 +62,15 @@ void writeArray(std::ostream& out, size_t count, const Item& item) {
   for (size_t first = 0; first < count; first += kChunk) {
     const size_t n = std::min(kChunk, count - first);
     text.assign(n, std::string());
-    parallelFor(size_t(0), n, [&](size_t i) { text[i] = item(first + i).dump(); });
+    parallelForRange(tbb::blocked_range<size_t>(0, n, 64),
+                     [&](const tbb::blocked_range<size_t>& r) {
+                       PatchRecord record;
+                       for (size_t i = r.begin(); i != r.end(); ++i) {
+                         record.clear();
+                         item(first + i, record);
+                         record.dump(text[i]);
+                       }
+                     });
     for (size_t i = 0; i < n; ++i) {
       if (first + i > 0) out << ',';
       out << text[i];
@@ -67,18 +79,23 @@ void writeArray(std::ostream& out, size_t count, const Item& item) {
   out << ']';
 }
 
-// The layout of `count` records item(i), or of `empty` when there are none: each part of
-// kPart records makes its own layout in parallel, one record at a time (never all held), and
-// the parts' layouts are merged in order. Where a part saw a null (whose layout depends on the
-// order the records come in) or refused a record, the records are added one by one instead:
-// the layout, or the error, is then the one-by-one result.
+// The layout of `count` records item(i, record), or of `empty` when there are none: each part of
+// kPart records makes its own layout in parallel, one record at a time in one reused record
+// (never all held), and the parts' layouts are merged in order. Where a part saw a null (whose
+// layout depends on the order the records come in) or refused a record, the records are added
+// one by one instead: the layout, or the error, is then the one-by-one result.
 template <typename Item>
 RecordLayout layoutOf(size_t count, const Item& item, const nlohmann::json& empty) {
   constexpr size_t kPart = 256;
   const auto oneByOne = [&] {
     RecordLayout layout;
     if (count == 0) layout.add(empty);
-    for (size_t i = 0; i < count; ++i) layout.add(item(i));
+    PatchRecord record;
+    for (size_t i = 0; i < count; ++i) {
+      record.clear();
+      item(i, record);
+      layout.add(record);
+    }
     layout.finish();
     return layout;
   };
@@ -86,7 +103,12 @@ RecordLayout layoutOf(size_t count, const Item& item, const nlohmann::json& empt
   std::vector<char> refused(parts.size(), 0);
   parallelFor(size_t(0), parts.size(), [&](size_t p) {
     try {
-      for (size_t i = p * kPart; i < std::min(count, (p + 1) * kPart); ++i) parts[p].add(item(i));
+      PatchRecord record;
+      for (size_t i = p * kPart; i < std::min(count, (p + 1) * kPart); ++i) {
+        record.clear();
+        item(i, record);
+        parts[p].add(record);
+      }
     } catch (const Error&) {
       refused[p] = 1;
     }
@@ -104,18 +126,40 @@ RecordLayout layoutOf(size_t count, const Item& item, const nlohmann::json& empt
   return layout;
 }
 
+// Packs the n records item(first + i) in `layout` into `bytes` (n × itemSize), in parallel.
+template <typename Item>
+void packRecords(size_t first, size_t n, const Item& item, const RecordLayout& layout,
+                 char* bytes) {
+  const size_t size = layout.itemSize();
+  parallelForRange(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
+    PatchRecord record;
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      record.clear();
+      item(first + i, record);
+      layout.fill(record, bytes + i * size);
+    }
+  });
+}
+
 // Writes the `count` records item(i) in `layout`, kChunk at a time.
 template <typename Item>
 void writeRecords(std::ostream& out, size_t count, const Item& item, const RecordLayout& layout) {
   constexpr size_t kChunk = 4096;
-  const size_t size = layout.itemSize();
   std::vector<char> bytes;
   for (size_t first = 0; first < count; first += kChunk) {
     const size_t n = std::min(kChunk, count - first);
-    bytes.resize(n * size);
-    parallelFor(size_t(0), n, [&](size_t i) { layout.fill(item(first + i), &bytes[i * size]); });
+    bytes.resize(n * layout.itemSize());
+    packRecords(first, n, item, layout, bytes.data());
     out.write(bytes.data(), std::streamsize(bytes.size()));
   }
+}
+
+template <typename Item>
+PackedRecords packAll(size_t count, const Item& item, const nlohmann::json& empty) {
+  PackedRecords packed{layoutOf(count, item, empty), {}, count};
+  packed.bytes.resize(count * packed.layout.itemSize());
+  packRecords(0, count, item, packed.layout, packed.bytes.data());
+  return packed;
 }
 
 }  // namespace
@@ -125,8 +169,14 @@ size_t bridgeCount(const SurfaceModel& model) {
   return model.renderPatches().size() - model.patchCount();
 }
 
+void bridgeRecord(const SurfaceModel& model, size_t i, PatchRecord& out) {
+  bridgeRecordOf(model.renderPatches().at(model.patchCount() + i), out);
+}
+
 nlohmann::json bridgeJson(const SurfaceModel& model, size_t i) {
-  return bridgeJsonOf(model.renderPatches().at(model.patchCount() + i));
+  PatchRecord record;
+  bridgeRecord(model, i, record);
+  return record.toJson();
 }
 
 nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tessellation) {
@@ -151,19 +201,31 @@ void writeConversionJson(const SurfaceModel& model, const Tessellation& tessella
   const size_t bridges = bridgeCount(model);
   if (writesBridges(model) || bridges > 0) {
     out << "\"bridges\":";
-    writeArray(out, bridges, [&](size_t i) { return bridgeJson(model, i); });
+    writeArray(out, bridges, [&](size_t i, PatchRecord& r) { bridgeRecord(model, i, r); });
     out << ',';
   }
   out << "\"model\":" << nlohmann::json(std::string(model.name())).dump() << ",\"patches\":";
-  writeArray(out, model.patchCount(), [&](size_t t) { return model.patchJson(t); });
+  writeArray(out, model.patchCount(), [&](size_t t, PatchRecord& r) { model.patchRecord(t, r); });
   out << ",\"tessellation\":" << nlohmann::json(tessellationName(tessellation)).dump()
       << ",\"triangles\":" << nlohmann::json(model.mesh().triangleCount()).dump() << "}\n";
 }
 
+PackedRecords packedPatches(const SurfaceModel& model) {
+  return packAll(
+      model.patchCount(), [&](size_t t, PatchRecord& r) { model.patchRecord(t, r); },
+      nlohmann::json::object());
+}
+
+PackedRecords packedBridges(const SurfaceModel& model) {
+  return packAll(
+      bridgeCount(model), [&](size_t i, PatchRecord& r) { bridgeRecord(model, i, r); },
+      emptyBridgeRecord());
+}
+
 void writePatchTable(const SurfaceModel& model, const Tessellation& tessellation,
                      std::ostream& out) {
-  const auto patch = [&](size_t t) { return model.patchJson(t); };
-  const auto bridge = [&](size_t i) { return bridgeJson(model, i); };
+  const auto patch = [&](size_t t, PatchRecord& r) { model.patchRecord(t, r); };
+  const auto bridge = [&](size_t i, PatchRecord& r) { bridgeRecord(model, i, r); };
   PatchTableInfo info;
   info.model = std::string(model.name());
   info.tessellation = tessellationName(tessellation);

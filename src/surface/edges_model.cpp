@@ -1,8 +1,7 @@
 #include "quadtri/surface/edges_model.h"
 
-#include <nlohmann/json.hpp>
-
 #include "quadtri/surface/local_patches.h"
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 namespace {
@@ -56,10 +55,9 @@ Vec3 thesisEq42(const QuadraticPatch& p, double up, double vp, Vec3* dup, Vec3* 
   return up * A + vp * B + w * C;
 }
 
-nlohmann::json curveJson(const EdgeCurve& c) {
-  nlohmann::json j;
-  for (const Vec3& coefficient : c.coefficients()) j.push_back(vecJson(coefficient));
-  return j;
+void addCurve(PatchRecord& out, PatchRecord::Ref object, std::string_view key, const EdgeCurve& c) {
+  const PatchRecord::Ref list = out.setArray(object, key);
+  for (const Vec3& coefficient : c.coefficients()) out.push(list, coefficient);
 }
 
 }  // namespace
@@ -105,15 +103,19 @@ void EdgesModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) co
   for (size_t i = 0; i < count; ++i) out[i] = blendPosition(p, uv[i].x(), uv[i].y());
 }
 
-nlohmann::json EdgesModel::patchJson(size_t t) const {
+void EdgesModel::patchRecord(size_t t, PatchRecord& out) const {
   const QuadraticPatch p = edges(t);
-  nlohmann::json j;
-  for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
-  j["control_points"] = {
-      {"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
+  const PatchRecord::Ref vertices = out.setArray(PatchRecord::kRoot, "vertices");
+  for (const Vec3& corner : p.v) out.push(vertices, corner);
+  const PatchRecord::Ref control = out.setObject(PatchRecord::kRoot, "control_points");
+  out.set(control, "b01", p.b[0]);
+  out.set(control, "b12", p.b[1]);
+  out.set(control, "b20", p.b[2]);
   const auto [fu, fv, fw] = thesisEdgeCurves(p);
-  j["edge_curves"] = {{"f_u", curveJson(fu)}, {"f_v", curveJson(fv)}, {"f_w", curveJson(fw)}};
-  return j;
+  const PatchRecord::Ref curves = out.setObject(PatchRecord::kRoot, "edge_curves");
+  addCurve(out, curves, "f_u", fu);
+  addCurve(out, curves, "f_v", fv);
+  addCurve(out, curves, "f_w", fw);
 }
 
 }  // namespace quadtri

@@ -1,6 +1,6 @@
 #include "quadtri/surface/flat_model.h"
 
-#include <nlohmann/json.hpp>
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 
@@ -26,14 +26,8 @@ SurfacePoint FlatModel::evaluate(size_t t, double u, double v) const {
   return {p, n};
 }
 
-nlohmann::json FlatModel::patchJson(size_t t) const {
-  const TriangleMesh& m = mesh();
-  nlohmann::json j;
-  for (int k = 0; k < 3; ++k) {
-    const Vec3& p = m.corner(t, k);
-    j["vertices"].push_back({p.x(), p.y(), p.z()});
-  }
-  return j;
+void FlatModel::patchRecord(size_t t, PatchRecord& out) const {
+  addVertices(mesh(), t, out);
 }
 
 }  // namespace quadtri

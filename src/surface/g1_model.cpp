@@ -1,11 +1,10 @@
 #include "quadtri/surface/g1_model.h"
 
-#include <nlohmann/json.hpp>
-
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/local_patches.h"
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 namespace {
@@ -172,16 +171,14 @@ SurfacePoint G1Model::evaluate(size_t t, double u, double v) const {
   return {s.position(c.u, c.v), orientedPatchNormal(mesh(), t, u, v, du, dv)};
 }
 
-nlohmann::json G1Model::patchJson(size_t t) const {
-  nlohmann::json out;
-  for (int k = 0; k < 3; ++k) out["vertices"].push_back(vecJson(mesh().corner(t, k)));
+void G1Model::patchRecord(size_t t, PatchRecord& out) const {
+  addVertices(mesh(), t, out);
   // pieces[k][i]: control point i of piece k (BezierTriangle::index order).
+  const PatchRecord::Ref pieces = out.setArray(PatchRecord::kRoot, "pieces");
   for (int k = 0; k < 3; ++k) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const Vec3& b : piece(t, k).b) points.push_back(vecJson(b));
-    out["pieces"].push_back(points);
+    const PatchRecord::Ref points = out.pushArray(pieces);
+    for (const Vec3& b : piece(t, k).b) out.push(points, b);
   }
-  return out;
 }
 
 }  // namespace quadtri

@@ -1,11 +1,10 @@
 #include "quadtri/surface/implicit_model.h"
 
-#include <nlohmann/json.hpp>
-
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/implicit_fit.h"
 #include "quadtri/surface/local_patches.h"
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 namespace {
@@ -147,10 +146,9 @@ SurfacePoint ImplicitModel::evaluateOn(const QuadraticPatch& fp, size_t t, doubl
   return {*p, safeNormalized(patch.orientation * quadricGradient(patch.q, *p), nParam)};
 }
 
-nlohmann::json ImplicitModel::patchJson(size_t t) const {
-  nlohmann::json j = quadraticPatchJson(parametricPatch(t));
-  j.update(quadricPatchJson(patches_[t]));
-  return j;
+void ImplicitModel::patchRecord(size_t t, PatchRecord& out) const {
+  addQuadraticPatch(parametricPatch(t), out);
+  addQuadricPatch(patches_[t], out);
 }
 
 }  // namespace quadtri

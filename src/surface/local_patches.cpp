@@ -1,10 +1,7 @@
 #include "quadtri/surface/local_patches.h"
 
-#include <fmt/core.h>
-
-#include <nlohmann/json.hpp>
-
 #include "quadtri/surface/edge_curves.h"
+#include "quadtri/surface/patch_record.h"
 #include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
@@ -29,31 +26,34 @@ Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v,
   return safeNormalized(blend, mesh.faceNormal(t));
 }
 
-nlohmann::json vecJson(const Vec3& v) {
-  return {v.x(), v.y(), v.z()};
-}
-
-nlohmann::json quadraticPatchJson(const QuadraticPatch& p) {
-  nlohmann::json j;
-  for (const Vec3& corner : p.v) j["vertices"].push_back(vecJson(corner));
-  j["control_points"] = {
-      {"b01", vecJson(p.b[0])}, {"b12", vecJson(p.b[1])}, {"b20", vecJson(p.b[2])}};
+void addQuadraticPatch(const QuadraticPatch& p, PatchRecord& out) {
+  const PatchRecord::Ref root = PatchRecord::kRoot;
+  const PatchRecord::Ref vertices = out.setArray(root, "vertices");
+  for (const Vec3& corner : p.v) out.push(vertices, corner);
+  const PatchRecord::Ref control = out.setObject(root, "control_points");
+  out.set(control, "b01", p.b[0]);
+  out.set(control, "b12", p.b[1]);
+  out.set(control, "b20", p.b[2]);
   const std::array<Vec3, 6> c = p.coefficients();
-  for (int k = 0; k < 6; ++k) j["coefficients"][fmt::format("c{}", k)] = vecJson(c[k]);
-  return j;
+  const PatchRecord::Ref coefficients = out.setObject(root, "coefficients");
+  constexpr const char* kNames[6] = {"c0", "c1", "c2", "c3", "c4", "c5"};
+  for (int k = 0; k < 6; ++k) out.set(coefficients, kNames[k], c[k]);
 }
 
-nlohmann::json quadricPatchJson(const QuadricPatch& patch) {
-  nlohmann::json j;
-  j["quadric"] = patch.q;
-  j["planes"] = nlohmann::json::array();
-  for (int i = 0; i < patch.planeCount; ++i) {
-    const Vec4& pl = patch.planes[i];
-    j["planes"].push_back({pl[0], pl[1], pl[2], pl[3]});
-  }
-  j["bounds"] = {{"min", vecJson(patch.bounds.lo)}, {"max", vecJson(patch.bounds.hi)}};
-  j["orientation"] = patch.orientation;
-  return j;
+void addQuadricPatch(const QuadricPatch& patch, PatchRecord& out) {
+  const PatchRecord::Ref root = PatchRecord::kRoot;
+  out.set(root, "quadric", patch.q.data(), patch.q.size());
+  const PatchRecord::Ref planes = out.setArray(root, "planes");
+  for (int i = 0; i < patch.planeCount; ++i) out.push(planes, patch.planes[i].data(), 4);
+  const PatchRecord::Ref bounds = out.setObject(root, "bounds");
+  out.set(bounds, "min", patch.bounds.lo);
+  out.set(bounds, "max", patch.bounds.hi);
+  out.set(root, "orientation", double(patch.orientation));
+}
+
+void addVertices(const TriangleMesh& mesh, size_t t, PatchRecord& out) {
+  const PatchRecord::Ref vertices = out.setArray(PatchRecord::kRoot, "vertices");
+  for (int k = 0; k < 3; ++k) out.push(vertices, mesh.corner(t, k));
 }
 
 }  // namespace quadtri

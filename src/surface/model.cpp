@@ -3,6 +3,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "model_cost.h"
 #include "quadtri/math/error.h"
@@ -13,12 +14,19 @@
 #include "quadtri/surface/implicit_model.h"
 #include "quadtri/surface/nagata_model.h"
 #include "quadtri/surface/param_model.h"
+#include "quadtri/surface/patch_record.h"
 #include "quadtri/surface/phong_model.h"
 #include "quadtri/surface/pn_model.h"
 #include "quadtri/surface/quadric_patch.h"
 #include "quadtri/surface/robust_implicit_model.h"
 
 namespace quadtri {
+
+nlohmann::json SurfaceModel::patchJson(size_t t) const {
+  PatchRecord record;
+  patchRecord(t, record);
+  return record.toJson();
+}
 
 const std::vector<QuadricPatch>& SurfaceModel::renderPatches() const {
   static const std::vector<QuadricPatch> none;

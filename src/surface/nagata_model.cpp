@@ -1,12 +1,11 @@
 #include "quadtri/surface/nagata_model.h"
 
-#include <nlohmann/json.hpp>
-
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/edge_curves.h"
 #include "quadtri/surface/local_patches.h"
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 namespace {
@@ -101,15 +100,16 @@ Vec3 NagataModel::curvature(size_t t, int k) const {
                          m.unitCornerNormal(t, l));
 }
 
-nlohmann::json NagataModel::patchJson(size_t t) const {
+void NagataModel::patchRecord(size_t t, PatchRecord& out) const {
   const QuadraticPatch patch = this->patch(t);
-  nlohmann::json out;
+  const PatchRecord::Ref vertices = out.setArray(PatchRecord::kRoot, "vertices");
+  const PatchRecord::Ref curvature = out.setArray(PatchRecord::kRoot, "curvature");
+  const PatchRecord::Ref control = out.setArray(PatchRecord::kRoot, "control_points");
   for (int k = 0; k < 3; ++k) {
-    out["vertices"].push_back(vecJson(patch.v[k]));
-    out["curvature"].push_back(vecJson(curvature(t, k)));
-    out["control_points"].push_back(vecJson(patch.b[k]));
+    out.push(vertices, patch.v[k]);
+    out.push(curvature, this->curvature(t, k));
+    out.push(control, patch.b[k]);
   }
-  return out;
 }
 
 }  // namespace quadtri

@@ -1,10 +1,7 @@
 #include "quadtri/surface/param_model.h"
 
-#include <fmt/format.h>
-
-#include <nlohmann/json.hpp>
-
 #include "quadtri/surface/local_patches.h"
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 
@@ -15,8 +12,8 @@ ParamModel::ParamModel(std::shared_ptr<const TriangleMesh> mesh)
   setFallbacks(std::move(fallbacks));
 }
 
-nlohmann::json ParamModel::patchJson(size_t t) const {
-  return quadraticPatchJson(patch(t));
+void ParamModel::patchRecord(size_t t, PatchRecord& out) const {
+  addQuadraticPatch(patch(t), out);
 }
 
 }  // namespace quadtri

@@ -1,10 +1,12 @@
 #include "quadtri/surface/patch_table.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <span>
 #include <string_view>
 
 #include "quadtri/math/error.h"
@@ -16,9 +18,13 @@ namespace {
 
 using Kind = RecordField::Kind;
 
-Kind numberKind(const nlohmann::json& v) {
-  if (v.is_boolean()) return Kind::Bool;
-  if (v.is_number_integer()) return Kind::Int;
+using Ref = PatchRecord::Ref;
+using Type = PatchRecord::Type;
+constexpr Ref kNone = PatchRecord::kNone;
+
+Kind numberKind(const PatchRecord& r, Ref v) {
+  if (r.type(v) == Type::Bool) return Kind::Bool;
+  if (r.type(v) == Type::Int) return Kind::Int;
   return Kind::Float;
 }
 
@@ -28,54 +34,87 @@ Kind mergeKind(Kind a, Kind b) {
   return Kind::Float;  // int and float (or bool) mixed
 }
 
-// The leaf shape of one value: its list dimensions and number kind.
-RecordField leafOf(const nlohmann::json& v, const std::string& key) {
-  RecordField n;
-  n.present = true;
-  if (!v.is_array()) {
-    n.kind = v.is_null() ? Kind::Float : numberKind(v);
-    return n;
+// The leaf shape of one value, its list dimensions and number kind, found without allocating
+// (a layout sees every record's every field).
+struct LeafShape {
+  static constexpr int kMaxDims = 8;
+  std::array<int64_t, kMaxDims> dims{};
+  int ndim = 0;
+  Kind kind = Kind::Unknown;
+  bool unknownInner = false;  // only empty lists at the innermost level seen
+  std::span<const int64_t> list() const { return {dims.data(), size_t(ndim)}; }
+};
+
+Kind scalarKind(const PatchRecord& r, Ref v) {
+  return r.type(v) == Type::Null ? Kind::Float : numberKind(r, v);
+}
+
+void shapeOf(const PatchRecord& r, Ref v, std::string_view key, LeafShape& s) {
+  s.unknownInner = false;
+  if (r.type(v) != Type::Array) {
+    s.ndim = 0;
+    s.kind = scalarKind(r, v);
+    return;
   }
-  n.dims.push_back(int64_t(v.size()));
-  if (v.empty()) {
-    n.unknownInner = true;
-    return n;
+  s.ndim = 1;
+  s.dims[0] = int64_t(r.size(v));
+  if (r.size(v) == 0) {
+    s.kind = Kind::Unknown;
+    s.unknownInner = true;
+    return;
   }
-  RecordField inner = leafOf(v[0], key);
-  for (size_t i = 1; i < v.size(); ++i) {
-    const RecordField other = leafOf(v[i], key);
-    if (other.dims != inner.dims || other.unknownInner != inner.unknownInner)
+  // A list of numbers, the common case, without recursing.
+  if (r.type(r.first(v)) != Type::Array) {
+    s.kind = Kind::Unknown;
+    for (Ref e = r.first(v); e != kNone; e = r.next(e)) {
+      if (r.type(e) == Type::Array) fail("patch JSON '{}': not a rectangular list of numbers", key);
+      s.kind = mergeKind(s.kind, scalarKind(r, e));
+    }
+    return;
+  }
+  LeafShape inner, other;
+  shapeOf(r, r.first(v), key, inner);
+  for (Ref e = r.next(r.first(v)); e != kNone; e = r.next(e)) {
+    shapeOf(r, e, key, other);
+    if (!std::ranges::equal(other.list(), inner.list()) || other.unknownInner != inner.unknownInner)
       fail("patch JSON '{}': not a rectangular list of numbers", key);
     inner.kind = mergeKind(inner.kind, other.kind);
   }
-  n.kind = inner.kind;
-  n.unknownInner = inner.unknownInner;
-  n.dims.insert(n.dims.end(), inner.dims.begin(), inner.dims.end());
-  return n;
+  if (inner.ndim + 1 > LeafShape::kMaxDims)
+    fail("patch JSON '{}': lists nested more than {} deep", key, LeafShape::kMaxDims);
+  s.dims[0] = int64_t(r.size(v));
+  std::copy_n(inner.dims.begin(), inner.ndim, s.dims.begin() + 1);
+  s.ndim = inner.ndim + 1;
+  s.kind = inner.kind;
+  s.unknownInner = inner.unknownInner;
 }
 
-void merge(RecordField& into, const nlohmann::json& v, const std::string& key, bool& sawNull);
+void merge(RecordField& into, const PatchRecord& r, Ref v, std::string_view key, bool& sawNull);
 
-void mergeObject(RecordField& into, const nlohmann::json& object, bool& sawNull) {
+void mergeObject(RecordField& into, const PatchRecord& r, Ref object, bool& sawNull) {
   into.kind = Kind::Object;
   into.present = true;
-  for (const auto& entry : object.items()) {
-    const std::string& k = entry.key();
-    if (entry.value().is_string()) continue;
-    const auto it = std::find_if(into.children.begin(), into.children.end(),
-                                 [&](const RecordField& c) { return c.name == k; });
+  // Records usually list the keys in the order the layout has them: try the next one first.
+  size_t next = 0;
+  for (Ref entry = r.first(object); entry != kNone; entry = r.next(entry)) {
+    const std::string_view k = r.key(entry);
+    const auto it = next < into.children.size() && into.children[next].name == k
+                        ? into.children.begin() + std::ptrdiff_t(next)
+                        : std::find_if(into.children.begin(), into.children.end(),
+                                       [&](const RecordField& c) { return c.name == k; });
     const size_t i = size_t(it - into.children.begin());
+    next = i + 1;
     if (it == into.children.end()) {
       into.children.emplace_back();
       into.children.back().name = k;
     }
-    merge(into.children[i], entry.value(), k, sawNull);
+    merge(into.children[i], r, entry, k, sawNull);
   }
 }
 
 // Merges the shape of a leaf (a number or list, present) into a present leaf `into`. `later`
 // may stand for one record or for several (a part's layout): the result is the same either way.
-void mergeLeaf(RecordField& into, const RecordField& later, const std::string& key) {
+void mergeLeaf(RecordField& into, const RecordField& later, std::string_view key) {
   if (into.dims.empty() != later.dims.empty())
     fail("patch JSON '{}': a number in one record, a list in another", key);
   into.kind = mergeKind(into.kind, later.kind);
@@ -93,24 +132,47 @@ void mergeLeaf(RecordField& into, const RecordField& later, const std::string& k
   into.dims[0] = outer;
 }
 
-void merge(RecordField& into, const nlohmann::json& v, const std::string& key, bool& sawNull) {
-  if (v.is_object()) {
+// mergeLeaf for one record's leaf.
+void mergeShape(RecordField& into, const LeafShape& later, std::string_view key) {
+  if (into.dims.empty() != (later.ndim == 0))
+    fail("patch JSON '{}': a number in one record, a list in another", key);
+  into.kind = mergeKind(into.kind, later.kind);
+  if (later.ndim == 0) return;
+  if (into.dims[0] != later.dims[0]) into.variable = true;
+  const int64_t outer = std::max(into.dims[0], later.dims[0]);
+  if (into.unknownInner) {
+    into.dims.assign(later.list().begin(), later.list().end());
+    into.unknownInner = later.unknownInner;
+  } else if (!later.unknownInner &&
+             !std::ranges::equal(std::span<const int64_t>(into.dims).subspan(1),
+                                 later.list().subspan(1))) {
+    fail("patch JSON '{}': lists of different shapes in different records", key);
+  }
+  into.dims[0] = outer;
+}
+
+void merge(RecordField& into, const PatchRecord& r, Ref v, std::string_view key, bool& sawNull) {
+  if (r.type(v) == Type::Object) {
     if (into.present && into.kind != Kind::Object)
       fail("patch JSON '{}': an object in one record, a number or list in another", key);
-    mergeObject(into, v, sawNull);
+    mergeObject(into, r, v, sawNull);
     return;
   }
   if (into.kind == Kind::Object)
     fail("patch JSON '{}': an object in one record, a number or list in another", key);
-  if (v.is_null()) sawNull = true;
-  if (v.is_null() && into.present) return;
-  RecordField leaf = leafOf(v, key);
+  const bool null = r.type(v) == Type::Null;
+  if (null) sawNull = true;
+  if (null && into.present) return;
+  LeafShape leaf;
+  shapeOf(r, v, key, leaf);
   if (!into.present) {
-    leaf.name = into.name;
-    into = std::move(leaf);
+    into.present = true;
+    into.kind = leaf.kind;
+    into.dims.assign(leaf.list().begin(), leaf.list().end());
+    into.unknownInner = leaf.unknownInner;
     return;
   }
-  mergeLeaf(into, leaf, key);
+  mergeShape(into, leaf, key);
 }
 
 // The fields of a layout of later records merged into `into` (RecordLayout::merge).
@@ -167,62 +229,72 @@ size_t layout(RecordField& node, size_t offset, bool fix) {
   return at;
 }
 
-void writeNumber(const RecordField& node, const nlohmann::json& v, char* at) {
+void writeNumber(const RecordField& node, const PatchRecord& r, Ref v, char* at) {
+  const bool number = r.isNumber(v), boolean = r.type(v) == Type::Bool;
   if (node.kind == Kind::Bool) {
-    const bool b = v.is_boolean() ? v.get<bool>() : (v.is_number() && v.get<double>() != 0.0);
+    const bool b = boolean ? r.boolean(v) : (number && r.number(v) != 0.0);
     std::memcpy(at, &b, 1);
   } else if (node.kind == Kind::Int) {
-    const int64_t i = v.is_number() ? v.get<int64_t>() : 0;
+    const int64_t i = number ? r.integer(v) : 0;
     std::memcpy(at, &i, 8);
   } else {
-    const double d = v.is_number() || v.is_boolean() ? v.get<double>()
-                                                     : std::numeric_limits<double>::quiet_NaN();
+    const double d = number || boolean ? r.number(v) : std::numeric_limits<double>::quiet_NaN();
     std::memcpy(at, &d, 8);
   }
 }
 
-void writeList(const RecordField& node, const nlohmann::json& v, size_t level, char* at) {
-  if (level == node.dims.size() || !v.is_array()) {
-    if (level == node.dims.size()) writeNumber(node, v, at);
+void writeList(const RecordField& node, const PatchRecord& r, Ref v, size_t level, char* at) {
+  if (level == node.dims.size() || r.type(v) != Type::Array) {
+    if (level == node.dims.size()) writeNumber(node, r, v, at);
     return;
   }
   size_t stride = node.kind == Kind::Bool ? 1 : 8;
   for (size_t l = level + 1; l < node.dims.size(); ++l) stride *= size_t(node.dims[l]);
-  const size_t n = std::min(v.size(), size_t(node.dims[level]));
-  for (size_t i = 0; i < n; ++i) writeList(node, v[i], level + 1, at + i * stride);
+  const size_t n = std::min(r.size(v), size_t(node.dims[level]));
+  Ref e = r.first(v);
+  for (size_t i = 0; i < n; ++i, e = r.next(e)) writeList(node, r, e, level + 1, at + i * stride);
 }
 
-void fillField(const RecordField& node, const nlohmann::json* v, char* base) {
+void fillField(const RecordField& node, const PatchRecord& r, Ref v, char* base) {
   if (node.kind == Kind::Object) {
+    const bool object = v != kNone && r.type(v) == Type::Object;
+    // The record's members usually come in the layout's order: try the next one first.
+    Ref expected = object ? r.first(v) : kNone;
     for (const RecordField& child : node.children) {
-      const nlohmann::json* item = nullptr;
-      if (v && v->is_object()) {
-        auto it = v->find(child.name);
-        if (it != v->end()) item = &*it;
-      }
-      fillField(child, item, base);
+      Ref member = kNone;
+      if (expected != kNone && r.key(expected) == child.name)
+        member = expected;
+      else if (object)
+        member = r.find(v, child.name);
+      expected = member != kNone ? r.next(member) : kNone;
+      fillField(child, r, member, base);
     }
     return;
   }
   char* at = base + node.offset;
-  if (!v || v->is_null()) {
+  if (v == kNone || r.type(v) == Type::Null) {
     if (node.kind == Kind::Float && !node.variable) {
       const double nan = std::numeric_limits<double>::quiet_NaN();
       for (size_t i = 0; i < valueBytes(node) / 8; ++i) std::memcpy(at + 8 * i, &nan, 8);
     }
     return;
   }
-  writeList(node, *v, 0, at);
+  writeList(node, r, v, 0, at);
   if (node.variable) {
-    const int64_t count = v->is_array() ? int64_t(std::min(v->size(), size_t(node.dims[0]))) : 0;
+    const int64_t count =
+        r.type(v) == Type::Array ? int64_t(std::min(r.size(v), size_t(node.dims[0]))) : 0;
     std::memcpy(base + node.countOffset, &count, 8);
   }
 }
 
 }  // namespace
 
+void RecordLayout::add(const PatchRecord& record) {
+  mergeObject(root_, record, PatchRecord::kRoot, sawNull_);
+}
+
 void RecordLayout::add(const nlohmann::json& record) {
-  mergeObject(root_, record, sawNull_);
+  add(PatchRecord::fromJson(record));
 }
 
 void RecordLayout::merge(const RecordLayout& later) {
@@ -235,23 +307,19 @@ void RecordLayout::finish() {
   itemSize_ = layout(root_, 0, true);
 }
 
-void RecordLayout::fill(const nlohmann::json& record, char* out) const {
+void RecordLayout::fill(const PatchRecord& record, char* out) const {
   std::memset(out, 0, itemSize_);
-  fillField(root_, &record, out);
+  fillField(root_, record, PatchRecord::kRoot, out);
+}
+
+void RecordLayout::fill(const nlohmann::json& record, char* out) const {
+  fill(PatchRecord::fromJson(record), out);
 }
 
 RecordLayout RecordLayout::fromFields(RecordField root) {
   RecordLayout l;
   l.root_ = std::move(root);
   l.itemSize_ = layout(l.root_, 0, false);
-  return l;
-}
-
-RecordLayout recordLayout(const std::vector<nlohmann::json>& records, const nlohmann::json& empty) {
-  RecordLayout l;
-  if (records.empty()) l.add(empty);
-  for (const nlohmann::json& r : records) l.add(r);
-  l.finish();
   return l;
 }
 

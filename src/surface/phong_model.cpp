@@ -1,12 +1,11 @@
 #include "quadtri/surface/phong_model.h"
 
-#include <nlohmann/json.hpp>
-
 #include "quadtri/math/error.h"
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/local_patches.h"
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 
@@ -47,17 +46,18 @@ std::array<Vec3, 3> PhongModel::computeControlPoints(size_t t) const {
   return phongControlPoints(localTriangle(mesh(), t), EdgeEnds::Triangle{}, alpha_);
 }
 
-nlohmann::json PhongModel::patchJson(size_t t) const {
+void PhongModel::patchRecord(size_t t, PatchRecord& out) const {
   const LocalTriangle tri = localTriangle(mesh(), t);
-  nlohmann::json j;
-  j["alpha"] = alpha_;
+  out.set(PatchRecord::kRoot, "alpha", alpha_);
   const std::array<Vec3, 3> b = controlPoints(t);
+  const PatchRecord::Ref vertices = out.setArray(PatchRecord::kRoot, "vertices");
+  const PatchRecord::Ref normals = out.setArray(PatchRecord::kRoot, "normals");
+  const PatchRecord::Ref control = out.setArray(PatchRecord::kRoot, "control_points");
   for (int k = 0; k < 3; ++k) {
-    j["vertices"].push_back(vecJson(tri.p[k]));
-    j["normals"].push_back(vecJson(tri.n[k]));
-    j["control_points"].push_back(vecJson(b[k]));
+    out.push(vertices, tri.p[k]);
+    out.push(normals, tri.n[k]);
+    out.push(control, b[k]);
   }
-  return j;
 }
 
 }  // namespace quadtri

@@ -1,13 +1,10 @@
 #include "quadtri/surface/pn_model.h"
 
-#include <fmt/format.h>
-
-#include <nlohmann/json.hpp>
-
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/creases.h"
 #include "quadtri/surface/local_patches.h"
+#include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
 namespace {
@@ -223,17 +220,19 @@ Vec3 PnModel::pnNormal(size_t t, double u, double v) const {
   return evaluate(t, u, v).normal;
 }
 
-nlohmann::json PnModel::patchJson(size_t t) const {
+void PnModel::patchRecord(size_t t, PatchRecord& out) const {
   const PnPatch patch = this->patch(t);
-  nlohmann::json out;
-  for (int k = 0; k < 3; ++k) out["vertices"].push_back(vecJson(mesh().corner(t, k)));
+  addVertices(mesh(), t, out);
+  // Keys bIJK and nIJK: the control point's (or normal coefficient's) Bernstein indices.
+  const auto name = [](char letter, int i, int j, int k) {
+    return std::string{letter, char('0' + i), char('0' + j), char('0' + k)};
+  };
+  const PatchRecord::Ref b = out.setObject(PatchRecord::kRoot, "b");
   for (int i = 0; i <= 3; ++i)
-    for (int j = 0; i + j <= 3; ++j)
-      out["b"][fmt::format("b{}{}{}", i, j, 3 - i - j)] = vecJson(patch.b[i][j]);
+    for (int j = 0; i + j <= 3; ++j) out.set(b, name('b', i, j, 3 - i - j), patch.b[i][j]);
+  const PatchRecord::Ref n = out.setObject(PatchRecord::kRoot, "n");
   for (int i = 0; i <= 2; ++i)
-    for (int j = 0; i + j <= 2; ++j)
-      out["n"][fmt::format("n{}{}{}", i, j, 2 - i - j)] = vecJson(patch.n[i][j]);
-  return out;
+    for (int j = 0; i + j <= 2; ++j) out.set(n, name('n', i, j, 2 - i - j), patch.n[i][j]);
 }
 
 }  // namespace quadtri

@@ -1,12 +1,12 @@
 #include "quadtri/surface/robust_implicit_model.h"
 
 #include <array>
-#include <nlohmann/json.hpp>
 
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/mesh/winding.h"
+#include "quadtri/surface/patch_record.h"
 #include "quadtri/surface/robust_pencil.h"
 #include "quadtri/surface/robust_quadric_fit.h"
 
@@ -560,27 +560,15 @@ Vec3 RobustImplicitModel::position(size_t t, double u, double v) const {
   return start + s * dir;
 }
 
-nlohmann::json RobustImplicitModel::patchJson(size_t t) const {
+void RobustImplicitModel::patchRecord(size_t t, PatchRecord& out) const {
   const QuadricPatch& patch = patches_[t];
-  nlohmann::json j;
-  for (int k = 0; k < 3; ++k) {
-    const Vec3& p = mesh().corner(t, k);
-    j["vertices"].push_back({p.x(), p.y(), p.z()});
-  }
-  j["quadric"] = patch.q;
-  j["planes"] = nlohmann::json::array();
-  for (int i = 0; i < patch.planeCount; ++i) {
-    const Vec4& p = patch.planes[i];
-    j["planes"].push_back({p[0], p[1], p[2], p[3]});
-  }
-  j["bounds"] = {{"min", {patch.bounds.lo.x(), patch.bounds.lo.y(), patch.bounds.lo.z()}},
-                 {"max", {patch.bounds.hi.x(), patch.bounds.hi.y(), patch.bounds.hi.z()}}};
-  j["orientation"] = patch.orientation;
-  j["corner_normal_error_deg"] = frames_[t].cornerNormalErrorDeg;
-  j["flat"] = frames_[t].flat;
-  j["blend"] = frames_[t].blend;
-  j["base"] = {patch.base[0], patch.base[1], patch.base[2], patch.base[3]};
-  return j;
+  const PatchRecord::Ref root = PatchRecord::kRoot;
+  addVertices(mesh(), t, out);
+  addQuadricPatch(patch, out);
+  out.set(root, "corner_normal_error_deg", frames_[t].cornerNormalErrorDeg);
+  out.setBool(root, "flat", frames_[t].flat);
+  out.set(root, "blend", frames_[t].blend);
+  out.set(root, "base", patch.base.data(), 4);
 }
 
 }  // namespace quadtri

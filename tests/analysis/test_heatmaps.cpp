@@ -29,7 +29,7 @@ class SphereQuadricModel final : public SurfaceModel {
   }
   Representation representation() const override { return Representation::Implicit; }
   const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
-  nlohmann::json patchJson(size_t) const override { return {}; }
+  void patchRecord(size_t, PatchRecord&) const override {}
 
  private:
   std::vector<QuadricPatch> patches_;
@@ -43,7 +43,7 @@ class FlatFaces final : public SurfaceModel {
     return {(1 - u - v) * mesh().corner(t, 0) + u * mesh().corner(t, 1) + v * mesh().corner(t, 2),
             mesh().faceNormal(t)};
   }
-  nlohmann::json patchJson(size_t) const override { return {}; }
+  void patchRecord(size_t, PatchRecord&) const override {}
 };
 
 TEST(Heatmaps, LayoutMapsPixelsBackToTheirPatch) {

@@ -154,7 +154,7 @@ class SphereProjection final : public SurfaceModel {
   Representation representation() const override { return representation_; }
   const std::vector<QuadricPatch>& renderPatches() const override { return patches_; }
   size_t patchMemoryBytes() const override { return patches_.size() * sizeof(QuadricPatch); }
-  nlohmann::json patchJson(size_t) const override { return {}; }
+  void patchRecord(size_t, PatchRecord&) const override {}
 
  private:
   Representation representation_;
@@ -173,7 +173,7 @@ class NotFiniteAtOneCorner final : public SurfaceModel {
     if (t == patch_ && u == 1.0 && v == 0.0) p.y() = std::nan("");
     return {p, m.faceNormal(t)};
   }
-  nlohmann::json patchJson(size_t) const override { return {}; }
+  void patchRecord(size_t, PatchRecord&) const override {}
 
  private:
   size_t patch_;

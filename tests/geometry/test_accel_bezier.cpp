@@ -385,7 +385,7 @@ class PiecesModel : public SurfaceModel {
   }
   Representation representation() const override { return Representation::Bezier; }
   const std::vector<BezierTriangle>& bezierPieces() const override { return pieces_; }
-  nlohmann::json patchJson(size_t) const override { return nlohmann::json::object(); }
+  void patchRecord(size_t, PatchRecord&) const override {}
 
  private:
   static std::shared_ptr<const TriangleMesh> octahedronMesh() {

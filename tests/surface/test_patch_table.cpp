@@ -69,7 +69,10 @@ TEST_F(PatchTableTest, RecordsHoldThePatchJsonInTheirLayout) {
                             const RecordLayout& got, const std::vector<char>& bytes,
                             uint64_t count) {
       const std::vector<nlohmann::json> records(list.begin(), list.end());
-      const RecordLayout want = recordLayout(records, empty);
+      RecordLayout want;
+      if (records.empty()) want.add(empty);
+      for (const nlohmann::json& r : records) want.add(r);
+      want.finish();
       ASSERT_EQ(count, records.size()) << name;
       ASSERT_EQ(got.itemSize(), want.itemSize()) << name;
       std::vector<char> record(want.itemSize());

@@ -122,7 +122,7 @@ class OnePointModel final : public SurfaceModel {
         (1.0 - u - v) * mesh().corner(t, 0) + u * mesh().corner(t, 1) + v * mesh().corner(t, 2);
     return {p, Vec3::UnitZ()};
   }
-  nlohmann::json patchJson(size_t) const override { return {}; }
+  void patchRecord(size_t, PatchRecord&) const override {}
 
  private:
   Vec2 where_;

@@ -5,8 +5,10 @@
 #include <nlohmann/json_fwd.hpp>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "quadtri/surface/model.h"
+#include "quadtri/surface/patch_table.h"
 #include "quadtri/surface/tessellate.h"
 
 namespace quadtri {
@@ -19,9 +21,21 @@ std::string tessellationName(const Tessellation& tessellation);
 nlohmann::json conversionJson(const SurfaceModel& model, const Tessellation& tessellation);
 
 /// The edge bridges of quadric-implicit-robust (an implicit model's render patches after its
-/// patches; 0 for other models), and bridge i's JSON as conversionJson lists it.
+/// patches; 0 for other models), bridge i's record (into `out`, empty) and its JSON as
+/// conversionJson lists it.
 size_t bridgeCount(const SurfaceModel& model);
+void bridgeRecord(const SurfaceModel& model, size_t i, PatchRecord& out);
 nlohmann::json bridgeJson(const SurfaceModel& model, size_t i);
+
+/// Every patch's (or edge bridge's) record packed as the binary patch table packs it: the layout,
+/// then count × layout.itemSize() bytes (what Python's Model.patches() and bridges() return).
+struct PackedRecords {
+  RecordLayout layout;
+  std::vector<char> bytes;
+  size_t count = 0;
+};
+PackedRecords packedPatches(const SurfaceModel& model);
+PackedRecords packedBridges(const SurfaceModel& model);
 
 /// Writes conversionJson(model, tessellation).dump() and a newline to `out`, the same bytes, as
 /// a stream: the patches are dumped in parallel a few thousand at a time and written in order,

@@ -65,7 +65,7 @@ class EdgesModel final : public SurfaceModel {
   Vec3 position(size_t t, double u, double v) const override;
   void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
   bool sharesEdges() const override { return blend_ == Blend::Transfinite; }
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 
   /// Corners and edge control points of triangle t (edge k joins corners k and k+1).
   QuadraticPatch edges(size_t t) const { return quadraticPatch(mesh(), controlPoints_, t); }

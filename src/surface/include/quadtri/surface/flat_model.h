@@ -24,7 +24,7 @@ class FlatModel final : public SurfaceModel {
   Representation representation() const override { return Representation::InputTriangles; }
   bool interpolatesShadingNormals() const override { return normals_ != Normals::Geometric; }
   bool liftsRayOrigins() const override { return normals_ == Normals::InterpolatedOffset; }
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 
  private:
   Normals normals_;

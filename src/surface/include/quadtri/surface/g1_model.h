@@ -47,7 +47,7 @@ class G1Model final : public SurfaceModel {
   Representation representation() const override { return Representation::Bezier; }
   const std::vector<BezierTriangle>& bezierPieces() const override { return pieces_; }
   size_t patchMemoryBytes() const override { return pieces_.size() * sizeof(BezierTriangle); }
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 
   const BezierTriangle& piece(size_t t, int k) const { return pieces_[3 * t + size_t(k)]; }
 

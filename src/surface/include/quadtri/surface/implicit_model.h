@@ -34,7 +34,7 @@ class ImplicitModel final : public SurfaceModel {
   size_t patchMemoryBytes() const override { return sizeof(QuadricPatch) * patches_.size(); }
   /// {"quadric": [A..J], "planes": [[nx,ny,nz,d], ...], "bounds": {"min", "max"},
   ///  "parametric": {"c": [c0..c5]}, "control_points": [b01, b12, b20]}.
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 
   /// The §4.2 parametric patch f_p that patch t was fitted to: the triangle's corners and its
   /// edges' control points, kept where they need the mesh's adjacency and computed again

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <array>
-#include <nlohmann/json_fwd.hpp>
 
 #include "quadtri/mesh/triangle_mesh.h"
 
@@ -26,15 +25,17 @@ LocalTriangle localTriangle(const TriangleMesh& mesh, size_t t);
 Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v, const Vec3& du,
                          const Vec3& dv);
 
-/// [x, y, z] for patch JSON.
-nlohmann::json vecJson(const Vec3& v);
-
 struct QuadraticPatch;
 struct QuadricPatch;
-/// {"vertices", "control_points": {b01, b12, b20}, "coefficients": {c0..c5}} of a quadratic
-/// Bézier patch (the thesis' §4.2 parametric triangle), shared by every model built on one.
-nlohmann::json quadraticPatchJson(const QuadraticPatch& patch);
-/// {"quadric": [A..J], "planes": [[nx, ny, nz, d]...], "bounds": {min, max}, "orientation"}.
-nlohmann::json quadricPatchJson(const QuadricPatch& patch);
+class PatchRecord;
+/// Adds {"vertices", "control_points": {b01, b12, b20}, "coefficients": {c0..c5}} of a quadratic
+/// Bézier patch (the thesis' §4.2 parametric triangle) to a patch record, shared by every model
+/// built on one.
+void addQuadraticPatch(const QuadraticPatch& patch, PatchRecord& out);
+/// Adds {"quadric": [A..J], "planes": [[nx, ny, nz, d]...], "bounds": {min, max},
+/// "orientation"} to a patch record.
+void addQuadricPatch(const QuadricPatch& patch, PatchRecord& out);
+/// Adds "vertices": [[x, y, z] × 3], the corners of triangle t.
+void addVertices(const TriangleMesh& mesh, size_t t, PatchRecord& out);
 
 }  // namespace quadtri

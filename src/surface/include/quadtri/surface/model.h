@@ -16,6 +16,7 @@ namespace quadtri {
 
 struct QuadricPatch;
 struct BezierTriangle;
+class PatchRecord;
 
 /// A point on a model's surface with its unit geometric normal, oriented to the side of the
 /// mesh's shading normals.
@@ -83,8 +84,11 @@ class SurfaceModel {
   virtual const std::vector<BezierTriangle>& bezierPieces() const;
   /// Bytes of the model's own patch records (0 when it renders tessellated triangles).
   virtual size_t patchMemoryBytes() const { return 0; }
-  /// The data of patch t for `quadtri convert --json` (see README, "Patch JSON").
-  virtual nlohmann::json patchJson(size_t t) const = 0;
+  /// Writes the data of patch t into `out`, an empty record (PatchRecord::clear), for `quadtri
+  /// convert`'s JSON and binary patch outputs (see README, "Patch JSON").
+  virtual void patchRecord(size_t t, PatchRecord& out) const = 0;
+  /// patchRecord(t) as JSON.
+  nlohmann::json patchJson(size_t t) const;
 
   /// Whether patch t gave up one of its constraints while the model was built (a fallback:
   /// a clamped edge control point, a patch replaced by its triangle's plane, ...; each model

@@ -44,7 +44,7 @@ class NagataModel final : public QuadraticPatchModel {
  public:
   explicit NagataModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "nagata"; }
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 
   /// Curvature coefficient of local edge k of patch t (corner k towards corner k+1).
   Vec3 curvature(size_t t, int k) const;

@@ -21,7 +21,7 @@ class ParamModel final : public QuadraticPatchModel {
  public:
   explicit ParamModel(std::shared_ptr<const TriangleMesh> mesh);
   std::string_view name() const override { return "quadric-param"; }
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 };
 
 }  // namespace quadtri

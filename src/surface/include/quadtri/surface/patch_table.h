@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "quadtri/surface/model.h"
+#include "quadtri/surface/patch_record.h"
 #include "quadtri/surface/tessellate.h"
 
 namespace quadtri {
@@ -47,6 +48,8 @@ struct RecordField {
 class RecordLayout {
  public:
   /// Adds one record's keys and shapes; throws Error for a key whose shapes disagree.
+  void add(const PatchRecord& record);
+  /// The same for a JSON object (strings are left out).
   void add(const nlohmann::json& record);
   /// Adds the keys and shapes of `later`, a layout of the records that follow this one's
   /// (before either is finished): the same layout as adding those records here one by one,
@@ -62,6 +65,7 @@ class RecordLayout {
   size_t itemSize() const { return itemSize_; }
   const RecordField& root() const { return root_; }
   /// Writes `record` into itemSize() bytes at `out` (which it zeroes first).
+  void fill(const PatchRecord& record, char* out) const;
   void fill(const nlohmann::json& record, char* out) const;
 
   /// The layout a field list describes (as read from a file); offsets follow from packing.
@@ -72,10 +76,6 @@ class RecordLayout {
   size_t itemSize_ = 0;
   bool sawNull_ = false;
 };
-
-/// The layout of `records`, or of `empty` (one record describing the shape) when there are none.
-RecordLayout recordLayout(const std::vector<nlohmann::json>& records,
-                          const nlohmann::json& empty = nlohmann::json::object());
 
 /// What a bridge record holds when a model has no bridges (so the table still has its fields).
 const nlohmann::json& emptyBridgeRecord();
@@ -93,9 +93,9 @@ std::string patchTableHeader(const PatchTableInfo& info, const RecordLayout& pat
                              const RecordLayout& bridges);
 
 /// Writes the model's patch table (`.qtp`) to `out`: the header, the field lists, then one
-/// record per patch and per edge bridge, little-endian. The patches' JSON is computed twice, a
-/// few thousand at a time (once for the layout, in parallel parts of 256, once for the
-/// records), so the table is never held whole in memory.
+/// record per patch and per edge bridge, little-endian. Each patch's record (patch_record.h) is
+/// computed twice, a few thousand at a time (once for the layout, in parallel parts of 256, once
+/// for the bytes), so the table is never held whole in memory.
 void writePatchTable(const SurfaceModel& model, const Tessellation& tessellation,
                      std::ostream& out);
 

@@ -32,7 +32,7 @@ class PhongModel final : public QuadraticPatchModel {
  public:
   explicit PhongModel(std::shared_ptr<const TriangleMesh> mesh, double alpha = 0.75);
   std::string_view name() const override { return "phong"; }
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
   double alpha() const { return alpha_; }
 
  private:

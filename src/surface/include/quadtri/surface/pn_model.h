@@ -77,7 +77,7 @@ class PnModel final : public SurfaceModel {
   SurfacePoint evaluate(size_t t, double u, double v) const override;
   Vec3 position(size_t t, double u, double v) const override;
   void positions(size_t t, const Vec2* uv, size_t count, Vec3* out) const override;
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 
   /// The paper's quadratic normal field of patch t at (u, v), normalised (falls back to the
   /// geometric normal where the field vanishes).

@@ -82,7 +82,7 @@ class RobustImplicitModel final : public SurfaceModel {
   /// The blend of patch t's corner normals towards its face normal: 0 for the fit to the
   /// shading normals, 1 for the triangle's plane.
   double blend(size_t t) const { return frames_[t].blend; }
-  nlohmann::json patchJson(size_t t) const override;
+  void patchRecord(size_t t, PatchRecord& out) const override;
 
   /// Largest angle (degrees) between the quadric's normal at a corner of patch t and the
   /// corner's shading normal (0 up to round-off on data sampled from a quadric).
