@@ -1,5 +1,8 @@
 #include "quadtri/surface/edges_model.h"
 
+#include <algorithm>
+#include <utility>
+
 #include "quadtri/surface/local_patches.h"
 #include "quadtri/surface/patch_record.h"
 
@@ -12,21 +15,52 @@ EdgeCurve curve(const QuadraticPatch& p, int i, int j) {
   return {p.v[i], p.b[j], p.v[j]};
 }
 
-// Transfinite interpolant and its partial derivatives. Treating λ0, λ1, λ2 as independent,
-// ∂P/∂λ_m = g_m + Σ_{i≠m} λ_i e_im'(λ_m) with g_m = e_mj(λ_j) + e_mk(λ_k) − v_m; then
-// p_u = ∂P/∂λ1 − ∂P/∂λ0 and p_v = ∂P/∂λ2 − ∂P/∂λ0 since λ0 = 1-u-v. With pu and pv null only
-// the position is computed (the same sums, so the same bits).
+// Transfinite interpolant P = Σ_m λ_m g_m, g_m = e_mj(λ_j) + e_mk(λ_k) − v_m (j, k the other two
+// corners), and its partial derivatives. Expanded in the control net, P = Σ_i W_i v_i + Σ W_e b_e
+// with W_i = λ_i (1 − 2 (λ_j + λ_k) + (λ_j² + λ_k²) + λ_i (1 − λ_i)) (the last term from the two
+// curves that end at v_i, as λ_j + λ_k = 1 − λ_i) and, for the control point b of edge (i, j),
+// W_e = 2 λ_i λ_j (2 − (λ_i + λ_j)): one weighted sum of six points instead of six curves (the
+// automatic level's check evaluates 13 points a patch, the tessellation and the fold check
+// more). Each weight is symmetric in the corners it pairs, to the bit; on an edge (λ_k = 0) the
+// other terms vanish and the two corners' terms are added in the order of their positions, so
+// both triangles of the edge compute its points with the same bits (C0 exactly).
+Vec3 transfinitePosition(const QuadraticPatch& p, const std::array<double, 3>& l) {
+  const auto cornerWeight = [&](int i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    return l[i] * (1.0 - 2.0 * (l[j] + l[k]) + (l[j] * l[j] + l[k] * l[k]) + l[i] * (1.0 - l[i]));
+  };
+  const auto edgeWeight = [&](int i) {
+    const int j = (i + 1) % 3;
+    return 2.0 * l[i] * l[j] * (2.0 - (l[i] + l[j]));
+  };
+  for (int k = 0; k < 3; ++k) {
+    if (l[k] != 0.0) continue;
+    int i = (k + 1) % 3, j = (k + 2) % 3;
+    const auto less = [](const Vec3& a, const Vec3& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    };
+    if (less(p.v[j], p.v[i])) std::swap(i, j);
+    return cornerWeight(i) * p.v[i] + cornerWeight(j) * p.v[j] +
+           edgeWeight((k + 1) % 3) * p.b[(k + 1) % 3];
+  }
+  Vec3 pos = Vec3::Zero();
+  for (int i = 0; i < 3; ++i) pos += cornerWeight(i) * p.v[i] + edgeWeight(i) * p.b[i];
+  return pos;
+}
+
+// Treating λ0, λ1, λ2 as independent, ∂P/∂λ_m = g_m + Σ_{i≠m} λ_i e_im'(λ_m); then
+// p_u = ∂P/∂λ1 − ∂P/∂λ0 and p_v = ∂P/∂λ2 − ∂P/∂λ0 since λ0 = 1-u-v. The position is
+// transfinitePosition's, with or without the derivatives.
 Vec3 transfinite(const QuadraticPatch& p, double u, double v, Vec3* pu, Vec3* pv) {
   const std::array<double, 3> l = {1.0 - u - v, u, v};
-  std::array<Vec3, 3> dl;
-  Vec3 pos = Vec3::Zero();
-  for (int m = 0; m < 3; ++m) {
-    const int j = (m + 1) % 3, k = (m + 2) % 3;
-    const Vec3 g = curve(p, m, j).at(l[j]) + curve(p, m, k).at(l[k]) - p.v[m];
-    pos += l[m] * g;
-    if (pu) dl[m] = g + l[j] * curve(p, j, m).tangent(l[m]) + l[k] * curve(p, k, m).tangent(l[m]);
-  }
+  const Vec3 pos = transfinitePosition(p, l);
   if (pu) {
+    std::array<Vec3, 3> dl;
+    for (int m = 0; m < 3; ++m) {
+      const int j = (m + 1) % 3, k = (m + 2) % 3;
+      const Vec3 g = curve(p, m, j).at(l[j]) + curve(p, m, k).at(l[k]) - p.v[m];
+      dl[m] = g + l[j] * curve(p, j, m).tangent(l[m]) + l[k] * curve(p, k, m).tangent(l[m]);
+    }
     *pu = dl[1] - dl[0];
     *pv = dl[2] - dl[0];
   }
