@@ -1,8 +1,5 @@
 #include "quadtri/surface/edges_model.h"
 
-#include <algorithm>
-#include <utility>
-
 #include "quadtri/surface/local_patches.h"
 #include "quadtri/surface/patch_record.h"
 
@@ -21,9 +18,10 @@ EdgeCurve curve(const QuadraticPatch& p, int i, int j) {
 // curves that end at v_i, as λ_j + λ_k = 1 − λ_i) and, for the control point b of edge (i, j),
 // W_e = 2 λ_i λ_j (2 − (λ_i + λ_j)): one weighted sum of six points instead of six curves (the
 // automatic level's check evaluates 13 points a patch, the tessellation and the fold check
-// more). Each weight is symmetric in the corners it pairs, to the bit; on an edge (λ_k = 0) the
-// other terms vanish and the two corners' terms are added in the order of their positions, so
-// both triangles of the edge compute its points with the same bits (C0 exactly).
+// more). Each weight is symmetric in the corners it pairs, to the bit; on an edge (λ_k = 0) only
+// the edge's two corners and its control point remain, and the corners' two terms are added
+// first (a sum of two is the same either way round), so both triangles of the edge compute its
+// points with the same bits (C0 exactly), whichever way round each numbers the edge.
 Vec3 transfinitePosition(const QuadraticPatch& p, const std::array<double, 3>& l) {
   const auto cornerWeight = [&](int i) {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
@@ -35,13 +33,8 @@ Vec3 transfinitePosition(const QuadraticPatch& p, const std::array<double, 3>& l
   };
   for (int k = 0; k < 3; ++k) {
     if (l[k] != 0.0) continue;
-    int i = (k + 1) % 3, j = (k + 2) % 3;
-    const auto less = [](const Vec3& a, const Vec3& b) {
-      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-    };
-    if (less(p.v[j], p.v[i])) std::swap(i, j);
-    return cornerWeight(i) * p.v[i] + cornerWeight(j) * p.v[j] +
-           edgeWeight((k + 1) % 3) * p.b[(k + 1) % 3];
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    return (cornerWeight(i) * p.v[i] + cornerWeight(j) * p.v[j]) + edgeWeight(i) * p.b[i];
   }
   Vec3 pos = Vec3::Zero();
   for (int i = 0; i < 3; ++i) pos += cornerWeight(i) * p.v[i] + edgeWeight(i) * p.b[i];

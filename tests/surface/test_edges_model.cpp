@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/mesh/topology.h"
@@ -138,6 +139,38 @@ TEST(EdgesModel, Eq42CracksAcrossSharedEdges) {
     else
       EXPECT_GT(gap, 1e-3);
     EXPECT_EQ(model.sharesEdges(), blend == EdgesModel::Blend::Transfinite);
+  }
+}
+
+// quadric-edges is C0 to the bit: both triangles of an edge compute its points with the same
+// bits (the weighted sum adds the edge's two corners in the order of their positions), on a
+// smooth mesh and on one with jittered vertices and normals.
+TEST(EdgesModel, TransfiniteNeighboursMeetToTheBit) {
+  std::mt19937_64 rng(23);
+  std::normal_distribution<double> g;
+  TriangleMesh rough = parseBuiltinSpec("icosphere:2")->mesh;
+  for (Vec3& p : rough.positions) p += 0.02 * Vec3(g(rng), g(rng), g(rng));
+  for (Vec3& n : rough.normals) n = (n + 0.3 * Vec3(g(rng), g(rng), g(rng))).normalized();
+  for (const auto& mesh : {builtin("icosphere:2"), std::make_shared<const TriangleMesh>(rough)}) {
+    const MeshTopology topo(*mesh);
+    const EdgesModel model(mesh, EdgesModel::Blend::Transfinite);
+    size_t compared = 0;
+    for (const Edge& e : topo.edges) {
+      const auto [t0, k0] = e.sides[0];
+      const auto [t1, k1] = e.sides[1];
+      for (int i = 0; i <= 16; ++i) {
+        // The sides run the edge in opposite directions: s on one is 1 − s on the other.
+        const Vec2 a = test::edgeUv(k0, i / 16.0), b = test::edgeUv(k1, 1.0 - i / 16.0);
+        const Vec3 pa = model.evaluate(t0, a.x(), a.y()).position;
+        const Vec3 pb = model.evaluate(t1, b.x(), b.y()).position;
+        ASSERT_EQ(pa, pb) << "edge " << e.a << "-" << e.b << " at " << i << "/16";
+        Vec3 viaPositions;
+        model.positions(t0, &a, 1, &viaPositions);
+        ASSERT_EQ(viaPositions, pa);
+        ++compared;
+      }
+    }
+    EXPECT_EQ(compared, 17 * topo.edges.size());
   }
 }
 
