@@ -12,6 +12,13 @@
 // triangles out), with 1 and 2 threads; output triangles per second.
 //
 //   quadtri_bench --benchmark_filter=Tessellate
+//
+// Export/<model>/<format> times writing a converted model's patch data as `quadtri convert -o
+// x.json` and `-o x.qtp` write it (writeConversionJson, writePatchTable), on icosphere level 6
+// (81,920 patches), 2 threads, into a stream that counts and discards the bytes: patches and
+// bytes per second.
+//
+//   quadtri_bench --benchmark_filter=Export
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
@@ -19,11 +26,14 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <ostream>
+#include <streambuf>
 #include <string>
 #include <tuple>
 
 #include "bench_peer.h"
 #include "quadtri/mesh/shapes.h"
+#include "quadtri/surface/convert_output.h"
 #include "quadtri/surface/model.h"
 #include "quadtri/surface/tessellate.h"
 
@@ -101,6 +111,42 @@ void tessellateModel(benchmark::State& state, const std::string& model, const st
   state.counters["threads"] = threads;
 }
 
+// A stream buffer that counts what is written and keeps none of it.
+class CountingBuffer : public std::streambuf {
+ public:
+  size_t bytes = 0;
+
+ protected:
+  std::streamsize xsputn(const char*, std::streamsize n) override {
+    bytes += size_t(n);
+    return n;
+  }
+  int_type overflow(int_type c) override {
+    if (!traits_type::eq_int_type(c, traits_type::eof())) ++bytes;
+    return traits_type::not_eof(c);
+  }
+};
+
+void exportModel(benchmark::State& state, const std::string& model, const std::string& spec,
+                 bool table) {
+  const std::shared_ptr<const quadtri::SurfaceModel> converted = benchModel(model, spec);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(2));
+  size_t bytes = 0;
+  for (auto _ : state) {
+    CountingBuffer buffer;
+    std::ostream out(&buffer);
+    if (table)
+      quadtri::writePatchTable(*converted, quadtri::Tessellation{}, out);
+    else
+      quadtri::writeConversionJson(*converted, quadtri::Tessellation{}, out);
+    bytes = buffer.bytes;
+  }
+  state.counters["patches/s"] = benchmark::Counter(double(converted->patchCount()),
+                                                   benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["bytes/s"] =
+      benchmark::Counter(double(bytes), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 // icosphere level 5: 20,480 triangles; a 1000×500 torus: 1,000,000 triangles.
 const char* const kLargeMesh = "torus:1,0.35,1000,500";
 const char* const kMeshes[] = {"icosphere:5", kLargeMesh};
@@ -155,6 +201,13 @@ int main(int argc, char** argv) {
             ->UseRealTime()
             ->Iterations(3);
   }
+  for (const std::string& model : quadtri::modelNames())
+    for (const bool table : {false, true})
+      benchmark::RegisterBenchmark(("Export/" + model + "/" + (table ? "qtp" : "json")).c_str(),
+                                   exportModel, model, std::string("icosphere:6"), table)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Iterations(3);
   registerPeerBenchmarks();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
