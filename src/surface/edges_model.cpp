@@ -132,12 +132,7 @@ void EdgesModel::positions(size_t t, const Vec2* uv, size_t count, Vec3* out) co
 
 void EdgesModel::patchRecord(size_t t, PatchRecord& out) const {
   const QuadraticPatch p = edges(t);
-  const PatchRecord::Ref vertices = out.setArray(PatchRecord::kRoot, "vertices");
-  for (const Vec3& corner : p.v) out.push(vertices, corner);
-  const PatchRecord::Ref control = out.setObject(PatchRecord::kRoot, "control_points");
-  out.set(control, "b01", p.b[0]);
-  out.set(control, "b12", p.b[1]);
-  out.set(control, "b20", p.b[2]);
+  addControlNet(p, out);
   const auto [fu, fv, fw] = thesisEdgeCurves(p);
   const PatchRecord::Ref curves = out.setObject(PatchRecord::kRoot, "edge_curves");
   addCurve(out, curves, "f_u", fu);

@@ -26,16 +26,19 @@ Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v,
   return safeNormalized(blend, mesh.faceNormal(t));
 }
 
-void addQuadraticPatch(const QuadraticPatch& p, PatchRecord& out) {
-  const PatchRecord::Ref root = PatchRecord::kRoot;
-  const PatchRecord::Ref vertices = out.setArray(root, "vertices");
+void addControlNet(const QuadraticPatch& p, PatchRecord& out) {
+  const PatchRecord::Ref vertices = out.setArray(PatchRecord::kRoot, "vertices");
   for (const Vec3& corner : p.v) out.push(vertices, corner);
-  const PatchRecord::Ref control = out.setObject(root, "control_points");
+  const PatchRecord::Ref control = out.setObject(PatchRecord::kRoot, "control_points");
   out.set(control, "b01", p.b[0]);
   out.set(control, "b12", p.b[1]);
   out.set(control, "b20", p.b[2]);
+}
+
+void addQuadraticPatch(const QuadraticPatch& p, PatchRecord& out) {
+  addControlNet(p, out);
   const std::array<Vec3, 6> c = p.coefficients();
-  const PatchRecord::Ref coefficients = out.setObject(root, "coefficients");
+  const PatchRecord::Ref coefficients = out.setObject(PatchRecord::kRoot, "coefficients");
   constexpr const char* kNames[6] = {"c0", "c1", "c2", "c3", "c4", "c5"};
   for (int k = 0; k < 6; ++k) out.set(coefficients, kNames[k], c[k]);
 }

@@ -67,11 +67,6 @@ PatchRecord::Ref PatchRecord::element(Ref array, Type type) {
   return r;
 }
 
-PatchRecord::Ref PatchRecord::arrayMember(Ref object, std::string_view key) {
-  const Ref r = find(object, key);
-  return r != kNone && type(r) == Type::Array ? r : setArray(object, key);
-}
-
 void PatchRecord::setInt(Ref object, std::string_view key, int64_t v) {
   node(member(object, key, Type::Int)).integer = v;
 }

@@ -112,40 +112,24 @@ void mergeObject(RecordField& into, const PatchRecord& r, Ref object, bool& sawN
   }
 }
 
-// Merges the shape of a leaf (a number or list, present) into a present leaf `into`. `later`
-// may stand for one record or for several (a part's layout): the result is the same either way.
-void mergeLeaf(RecordField& into, const RecordField& later, std::string_view key) {
-  if (into.dims.empty() != later.dims.empty())
+// Merges the shape of a leaf (a number or list, present: its dims, kind, whether only empty
+// lists were seen innermost, whether its length already varied) into a present leaf `into`.
+// The shape may stand for one record or for several (a part's layout): the result is the same
+// either way.
+void mergeLeaf(RecordField& into, std::span<const int64_t> dims, Kind kind, bool unknownInner,
+               bool variable, std::string_view key) {
+  if (into.dims.empty() != dims.empty())
     fail("patch JSON '{}': a number in one record, a list in another", key);
-  into.kind = mergeKind(into.kind, later.kind);
-  if (later.dims.empty()) return;
+  into.kind = mergeKind(into.kind, kind);
+  if (dims.empty()) return;
   // Variable: not every record's list has the same length.
-  if (into.dims[0] != later.dims[0] || later.variable) into.variable = true;
-  const int64_t outer = std::max(into.dims[0], later.dims[0]);
+  if (into.dims[0] != dims[0] || variable) into.variable = true;
+  const int64_t outer = std::max(into.dims[0], dims[0]);
   if (into.unknownInner) {
-    into.dims = later.dims;
-    into.unknownInner = later.unknownInner;
-  } else if (!later.unknownInner && !std::equal(into.dims.begin() + 1, into.dims.end(),
-                                                later.dims.begin() + 1, later.dims.end())) {
-    fail("patch JSON '{}': lists of different shapes in different records", key);
-  }
-  into.dims[0] = outer;
-}
-
-// mergeLeaf for one record's leaf.
-void mergeShape(RecordField& into, const LeafShape& later, std::string_view key) {
-  if (into.dims.empty() != (later.ndim == 0))
-    fail("patch JSON '{}': a number in one record, a list in another", key);
-  into.kind = mergeKind(into.kind, later.kind);
-  if (later.ndim == 0) return;
-  if (into.dims[0] != later.dims[0]) into.variable = true;
-  const int64_t outer = std::max(into.dims[0], later.dims[0]);
-  if (into.unknownInner) {
-    into.dims.assign(later.list().begin(), later.list().end());
-    into.unknownInner = later.unknownInner;
-  } else if (!later.unknownInner &&
-             !std::ranges::equal(std::span<const int64_t>(into.dims).subspan(1),
-                                 later.list().subspan(1))) {
+    into.dims.assign(dims.begin(), dims.end());
+    into.unknownInner = unknownInner;
+  } else if (!unknownInner &&
+             !std::ranges::equal(std::span<const int64_t>(into.dims).subspan(1), dims.subspan(1))) {
     fail("patch JSON '{}': lists of different shapes in different records", key);
   }
   into.dims[0] = outer;
@@ -172,7 +156,7 @@ void merge(RecordField& into, const PatchRecord& r, Ref v, std::string_view key,
     into.unknownInner = leaf.unknownInner;
     return;
   }
-  mergeShape(into, leaf, key);
+  mergeLeaf(into, leaf.list(), leaf.kind, leaf.unknownInner, false, key);
 }
 
 // The fields of a layout of later records merged into `into` (RecordLayout::merge).
@@ -186,7 +170,8 @@ void mergeFields(RecordField& into, const RecordField& later) {
   }
   if ((into.kind == Kind::Object) != (later.kind == Kind::Object))
     fail("patch JSON '{}': an object in one record, a number or list in another", later.name);
-  if (into.kind != Kind::Object) return mergeLeaf(into, later, later.name);
+  if (into.kind != Kind::Object)
+    return mergeLeaf(into, later.dims, later.kind, later.unknownInner, later.variable, later.name);
   for (const RecordField& child : later.children) {
     const auto it = std::find_if(into.children.begin(), into.children.end(),
                                  [&](const RecordField& c) { return c.name == child.name; });

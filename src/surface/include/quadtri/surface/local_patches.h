@@ -28,6 +28,8 @@ Vec3 orientedPatchNormal(const TriangleMesh& mesh, size_t t, double u, double v,
 struct QuadraticPatch;
 struct QuadricPatch;
 class PatchRecord;
+/// Adds {"vertices", "control_points": {b01, b12, b20}} of a quadratic Bézier patch.
+void addControlNet(const QuadraticPatch& patch, PatchRecord& out);
 /// Adds {"vertices", "control_points": {b01, b12, b20}, "coefficients": {c0..c5}} of a quadratic
 /// Bézier patch (the thesis' §4.2 parametric triangle) to a patch record, shared by every model
 /// built on one.

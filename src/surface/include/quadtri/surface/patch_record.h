@@ -29,8 +29,6 @@ class PatchRecord {
   // kept sorted by key (as nlohmann::json sorts them), an array's elements in order.
   Ref setObject(Ref object, std::string_view key) { return member(object, key, Type::Object); }
   Ref setArray(Ref object, std::string_view key) { return member(object, key, Type::Array); }
-  /// The member `key` of `object` when it is an array, else a new empty array there (to append to).
-  Ref arrayMember(Ref object, std::string_view key);
   void set(Ref object, std::string_view key, double v) {
     node(member(object, key, Type::Float)).number = v;
   }
