@@ -1,5 +1,6 @@
 #include "quadtri/surface/flat_model.h"
 
+#include "quadtri/surface/local_patches.h"
 #include "quadtri/surface/patch_record.h"
 
 namespace quadtri {
