@@ -48,12 +48,39 @@ RTCDevice sharedDevice() {
   return device;
 }
 
+// Native triangles and user geometry are two Embree scenes (Accel::Impl::scenes).
+enum SceneKind { kNative = 0, kUser = 1 };
+
+// Whether the ray meets box b within [t0, t1] (the slab test). The selections are written as
+// the comparisons minsd and maxsd make, so they compile to those alone. A NaN step (a zero
+// direction component with the origin in a face's plane) comes out as a miss, which a box
+// grown beyond its contents (Accel::Impl::reach) can afford.
+bool meetsBox(const Bounds3& b, const Ray& ray, double t0, double t1) {
+  for (int a = 0; a < 3; ++a) {
+    const double inverse = 1.0 / ray.direction[a];
+    const double tn = (b.lo[a] - ray.origin[a]) * inverse;
+    const double tf = (b.hi[a] - ray.origin[a]) * inverse;
+    const double near = tn < tf ? tn : tf, far = tn > tf ? tn : tf;
+    t0 = near > t0 ? near : t0;
+    t1 = far < t1 ? far : t1;
+  }
+  return t0 <= t1;
+}
+
 }  // namespace
 
 struct Accel::Impl {
   Options options;
   RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  // Embree builds a BVH per kind of primitive and traverses every one of a scene for each ray,
+  // and a traversal costs about 200 instructions before it tests a box, even of a BVH that the
+  // ray misses at its root. So native triangles and user geometry are two scenes, and a ray
+  // enters a scene only where it meets that scene's bounds (`reach`, grown for the double ray)
+  // before the nearest hit so far. Geometry ids run over both scenes (rtcAttachGeometryByID).
+  RTCScene scenes[2] = {nullptr, nullptr};
+  size_t sceneGeometries[2] = {0, 0};
+  Bounds3 reach[2];
+  uint32_t nextId = 0;
   bool committed = false;
   size_t bytes = 0, partBytes = 0;
   std::vector<std::unique_ptr<accel_detail::PatchGeometry>>
@@ -73,8 +100,18 @@ struct Accel::Impl {
       fail("{}: {}", what, message);
     }
   }
-  // One Embree user geometry of `count` primitives with these callbacks, attached to the scene;
-  // `what` names the step in an error.
+  // Attaches `geom` to scene `kind` under the next id and releases it; `what` names the step in
+  // an error.
+  uint32_t attach(RTCGeometry geom, SceneKind kind, const char* what) {
+    const uint32_t id = nextId++;
+    rtcAttachGeometryByID(scenes[kind], geom, id);
+    rtcReleaseGeometry(geom);
+    check(what);
+    ++sceneGeometries[kind];
+    return id;
+  }
+  // One Embree user geometry of `count` primitives with these callbacks, attached to the user
+  // scene; `what` names the step in an error.
   uint32_t attachUserGeometry(size_t count, void* user, RTCBoundsFunction bounds,
                               RTCIntersectFunctionN intersect, RTCOccludedFunctionN occluded,
                               const char* what) {
@@ -86,10 +123,13 @@ struct Accel::Impl {
     rtcSetGeometryIntersectFunction(geom, intersect);
     rtcSetGeometryOccludedFunction(geom, occluded);
     rtcCommitGeometry(geom);
-    const uint32_t id = rtcAttachGeometry(scene, geom);
-    rtcReleaseGeometry(geom);
-    check(what);
-    return id;
+    return attach(geom, kUser, what);
+  }
+  // Whether the ray may meet the user scene within [tnear, tfar]: it has geometry and the ray
+  // meets its bounds there. (Native triangles are traced without the test: they are usually a
+  // room that nearly every ray meets, and Embree tests its own root box.)
+  bool reachesUser(const Ray& ray, double tnear, double tfar) const {
+    return sceneGeometries[kUser] != 0 && meetsBox(reach[kUser], ray, tnear, tfar);
   }
   void requireCommitted(const char* what) const {
     if (!committed) fail("{}: the acceleration structure has not been committed", what);
@@ -100,16 +140,18 @@ Accel::Accel(const Options& options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
   impl_->device = sharedDevice();
   embreeError.clear();  // from an earlier structure's call on this thread, already reported
-  impl_->scene = rtcNewScene(impl_->device);
-  rtcSetSceneFlags(
-      impl_->scene,
-      RTCSceneFlags((options.robust ? RTC_SCENE_FLAG_ROBUST : 0) |
-                    (options.collectHits ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
-  impl_->check("creating the Embree scene");
+  for (RTCScene& scene : impl_->scenes) {
+    scene = rtcNewScene(impl_->device);
+    rtcSetSceneFlags(
+        scene, RTCSceneFlags((options.robust ? RTC_SCENE_FLAG_ROBUST : 0) |
+                             (options.collectHits ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
+    impl_->check("creating the Embree scene");
+  }
 }
 
 Accel::~Accel() {
-  if (impl_->scene) rtcReleaseScene(impl_->scene);
+  for (RTCScene scene : impl_->scenes)
+    if (scene) rtcReleaseScene(scene);
 }
 
 uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
@@ -153,9 +195,7 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0,
                              3 * sizeof(uint32_t), mesh.triangles.size());
   rtcCommitGeometry(geom);
-  const uint32_t id = rtcAttachGeometry(impl_->scene, geom);
-  rtcReleaseGeometry(geom);
-  impl_->check("attaching a triangle geometry");
+  const uint32_t id = impl_->attach(geom, kNative, "attaching a triangle geometry");
   impl_->vertexBuffers.push_back(std::move(vertexBuffer));
   impl_->indexBuffers.push_back(std::move(indexBuffer));
   impl_->bytes += (mesh.positions.size() + mesh.triangles.size()) * 3 * sizeof(float);
@@ -306,7 +346,22 @@ void Accel::commit() {
   // follows it (the user geometry's address and its margin's are the two edges' tokens).
   for (const auto& g : impl_->patchGeometries) releaseEdge(g.get());
   for (const auto& g : impl_->bezierGeometries) releaseEdge(g.get());
-  rtcCommitScene(impl_->scene);
+  for (int kind : {kNative, kUser}) {
+    rtcCommitScene(impl_->scenes[kind]);
+    if (impl_->sceneGeometries[kind] == 0) continue;
+    // The scene's float bounds, grown by 1e-5 of their extent: the double ray may meet
+    // geometry that Embree's float copy of it meets (its hits are the float test's), or the
+    // reverse, about 6e-8 of the distance travelled apart.
+    RTCBounds b;
+    rtcGetSceneBounds(impl_->scenes[kind], &b);
+    Bounds3& r = impl_->reach[kind];
+    r = Bounds3();
+    r.extend(Vec3(b.lower_x, b.lower_y, b.lower_z));
+    r.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
+    const double grow = 1e-5 * std::max(r.lo.cwiseAbs().maxCoeff(), r.hi.cwiseAbs().maxCoeff());
+    r.lo.array() -= grow;
+    r.hi.array() += grow;
+  }
   for (const auto& g : impl_->patchGeometries) acquireEdge(&g->margin);
   for (const auto& g : impl_->bezierGeometries) acquireEdge(&g->margin);
   impl_->check("building the acceleration structure");
@@ -323,7 +378,13 @@ RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
   RTCRayHit rayhit;
   accel_detail::fillRay(ray, rayhit.ray);
   rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
-  rtcIntersect1(impl_->scene, &ctx.embree, &rayhit);
+  // Native triangles first: their hit bounds the user geometry's search (the callbacks read it
+  // from rayhit, as they would in one scene), and the user scene is skipped where the ray
+  // meets its bounds only beyond that hit.
+  if (impl_->sceneGeometries[kNative] != 0)
+    rtcIntersect1(impl_->scenes[kNative], &ctx.embree, &rayhit);
+  if (impl_->reachesUser(ray, ctx.tnear, std::min(ray.tfar, double(rayhit.ray.tfar))))
+    rtcIntersect1(impl_->scenes[kUser], &ctx.embree, &rayhit);
   RayHit hit;
   if (rayhit.hit.geomID == accel_detail::kInvalidId) return hit;
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive &&
@@ -361,7 +422,12 @@ bool Accel::occluded(const Ray& ray) const {
   ctx.tnear = std::max(ray.tnear, 0.0);
   RTCRay r;
   accel_detail::fillRay(ray, r);
-  rtcOccluded1(impl_->scene, &ctx.embree, &r);
+  if (impl_->sceneGeometries[kNative] != 0) {
+    rtcOccluded1(impl_->scenes[kNative], &ctx.embree, &r);
+    if (r.tfar < 0.0f) return true;
+  }
+  if (impl_->reachesUser(ray, ctx.tnear, ray.tfar))
+    rtcOccluded1(impl_->scenes[kUser], &ctx.embree, &r);
   return r.tfar < 0.0f;
 }
 
@@ -378,7 +444,8 @@ void Accel::allHits(const Ray& ray, std::vector<RayHit>& hits) const {
   RTCRayHit rayhit;
   accel_detail::fillRay(ray, rayhit.ray);
   rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
-  rtcIntersect1(impl_->scene, &ctx.embree, &rayhit);
+  for (SceneKind kind : {kNative, kUser})
+    if (impl_->sceneGeometries[kind] != 0) rtcIntersect1(impl_->scenes[kind], &ctx.embree, &rayhit);
 }
 
 size_t Accel::geometryBytes() const {
@@ -391,12 +458,14 @@ size_t Accel::patchPartBytes() const {
 
 Bounds3 Accel::bounds() const {
   impl_->requireCommitted("bounds");
-  RTCBounds b;
-  rtcGetSceneBounds(impl_->scene, &b);
   Bounds3 out;
-  if (b.lower_x <= b.upper_x) {
-    out.extend(Vec3(b.lower_x, b.lower_y, b.lower_z));
-    out.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
+  for (RTCScene scene : impl_->scenes) {
+    RTCBounds b;
+    rtcGetSceneBounds(scene, &b);
+    if (b.lower_x <= b.upper_x) {
+      out.extend(Vec3(b.lower_x, b.lower_y, b.lower_z));
+      out.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
+    }
   }
   return out;
 }

@@ -170,6 +170,87 @@ TEST(Accel, NearestOfTrianglesAndPatches) {
   }
 }
 
+// Accel keeps native triangles and user geometry in two Embree scenes, and a ray enters the
+// user scene only where it meets that scene's bounds before its nearest triangle hit. Against
+// the nearest hit over every primitive (the patches through the test the callbacks run, the
+// triangles by Möller–Trumbore in double), for rays from everywhere: inside and outside the
+// bounds, along the axes (zero direction components), from the planes of the bounds' faces,
+// with the wall in front of or behind the sphere, and with shortened intervals. Geometry ids
+// run over both scenes in the order the geometries were added.
+TEST(Accel, SkippingTheUserSceneLosesNoHit) {
+  const FlushToZeroScope flushToZero;
+  const std::vector<QuadricPatch> patches = spherePatches();
+  TriangleMesh wall, chip;
+  wall.positions = {Vec3(-3, -3, 1.5), Vec3(3, -3, 1.5), Vec3(3, 3, 1.5), Vec3(-3, 3, 1.5)};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  chip.positions = {Vec3(-0.5, -0.5, -0.25), Vec3(0.5, -0.5, -0.25), Vec3(0, 0.5, -0.25)};
+  chip.triangles = {{0, 1, 2}};
+  Accel accel;
+  ASSERT_EQ(accel.addTriangles(wall), 0u);
+  ASSERT_EQ(accel.addQuadricPatches(patches), 1u);
+  ASSERT_EQ(accel.addTriangles(chip), 2u);
+  accel.commit();
+  struct Expected {
+    double t = kInfinity;
+    uint32_t geometry = ~0u;
+  };
+  const auto triangleT = [](const TriangleMesh& mesh, size_t t, const Ray& ray) {
+    const Vec3 a = mesh.corner(t, 0), e1 = mesh.corner(t, 1) - a, e2 = mesh.corner(t, 2) - a;
+    const Vec3 p = ray.direction.cross(e2);
+    const double det = e1.dot(p);
+    if (det == 0.0) return kInfinity;
+    const Vec3 s = ray.origin - a, q = s.cross(e1);
+    const double u = s.dot(p) / det, v = ray.direction.dot(q) / det, hit = e2.dot(q) / det;
+    return u >= 0 && v >= 0 && u + v <= 1 && hit > ray.tnear && hit < ray.tfar ? hit : kInfinity;
+  };
+  const auto nearest = [&](const Ray& ray) {
+    Expected e;
+    for (const auto& [mesh, id] : {std::pair{&wall, 0u}, std::pair{&chip, 2u}})
+      for (size_t t = 0; t < mesh->triangleCount(); ++t)
+        if (const double hit = triangleT(*mesh, t, ray); hit < e.t) e = {hit, id};
+    for (size_t i = 0; i < patches.size(); ++i) {
+      double hit;
+      if (intersectPrimitive(patches, i, ray.origin, ray.direction, ray.tnear,
+                             std::min(ray.tfar, e.t), hit) &&
+          hit < e.t)
+        e = {hit, 1u};
+    }
+    return e;
+  };
+  Pcg32 rng(29);
+  const Vec3 axes[] = {Vec3::UnitX(),  Vec3::UnitY(),  Vec3::UnitZ(),
+                       -Vec3::UnitX(), -Vec3::UnitY(), -Vec3::UnitZ()};
+  int hitsOnSphere = 0, missesOfTheBounds = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Ray ray;
+    // Origins on a grid of quarter steps half the time: on the bounds' face planes (the
+    // sphere's box is [-1, 1]³, grown) and on the wall's and chip's planes.
+    for (int a = 0; a < 3; ++a)
+      ray.origin[a] =
+          i % 2 ? 0.25 * std::floor(16 * rng.nextDouble() - 8) : 6 * rng.nextDouble() - 3;
+    ray.direction = i % 3 == 0 ? axes[rng.nextUint() % 6] : uniformDirection(rng);
+    if (i % 5 == 0) ray.tnear = 0.5 * rng.nextDouble();
+    if (i % 7 == 0) ray.tfar = 3 * rng.nextDouble();
+    const Expected e = nearest(ray);
+    const RayHit hit = accel.intersect(ray);
+    ASSERT_EQ(hit.valid(), e.geometry != ~0u) << "ray " << i << " from " << ray.origin.transpose()
+                                              << " along " << ray.direction.transpose();
+    EXPECT_EQ(accel.occluded(ray), hit.valid()) << "ray " << i;
+    if (!hit.valid()) {
+      const Vec3 far = ray.origin + std::min(ray.tfar, 20.0) * ray.direction;
+      missesOfTheBounds +=
+          (ray.origin.cwiseAbs().maxCoeff() > 1.01 && far.cwiseAbs().maxCoeff() > 1.01);
+      continue;
+    }
+    EXPECT_EQ(hit.geometry, e.geometry) << "ray " << i;
+    EXPECT_NEAR(hit.t, e.t, e.geometry == 1u ? 1e-12 : 1e-6) << "ray " << i;
+    hitsOnSphere += hit.geometry == 1u;
+  }
+  // Both kinds of ray were there in numbers.
+  EXPECT_GT(hitsOnSphere, 1000);
+  EXPECT_GT(missesOfTheBounds, 2000);
+}
+
 // A ray leaving a convex closed surface from a hit point into the outer hemisphere of the
 // normal never meets the surface again; `offset` pushes the origin off along the normal.
 void expectNoReintersection(const Accel& accel, double offset, uint64_t seed) {
