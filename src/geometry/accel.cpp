@@ -127,9 +127,11 @@ struct Accel::Impl {
   }
   // Whether the ray may meet the user scene within [tnear, tfar]: it has geometry and the ray
   // meets its bounds there. (Native triangles are traced without the test: they are usually a
-  // room that nearly every ray meets, and Embree tests its own root box.)
+  // room that nearly every ray meets. Nor is the user scene tested when it is the only one:
+  // the test would spare a ray only Embree's own test of the same box.)
   bool reachesUser(const Ray& ray, double tnear, double tfar) const {
-    return sceneGeometries[kUser] != 0 && meetsBox(reach[kUser], ray, tnear, tfar);
+    return sceneGeometries[kUser] != 0 &&
+           (sceneGeometries[kNative] == 0 || meetsBox(reach[kUser], ray, tnear, tfar));
   }
   void requireCommitted(const char* what) const {
     if (!committed) fail("{}: the acceleration structure has not been committed", what);
