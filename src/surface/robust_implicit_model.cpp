@@ -6,6 +6,7 @@
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
 #include "quadtri/mesh/winding.h"
+#include "quadtri/surface/local_patches.h"
 #include "quadtri/surface/patch_record.h"
 #include "quadtri/surface/robust_pencil.h"
 #include "quadtri/surface/robust_quadric_fit.h"
