@@ -54,7 +54,7 @@ enum SceneKind { kNative = 0, kUser = 1 };
 // Whether the ray meets box b within [t0, t1] (the slab test). The selections are written as
 // the comparisons minsd and maxsd make, so they compile to those alone. A NaN step (a zero
 // direction component with the origin in a face's plane) comes out as a miss, which a box
-// grown beyond its contents (Accel::Impl::reach) can afford.
+// grown beyond its contents (Accel::Impl::userReach) can afford.
 bool meetsBox(const Bounds3& b, const Ray& ray, double t0, double t1) {
   for (int a = 0; a < 3; ++a) {
     const double inverse = 1.0 / ray.direction[a];
@@ -75,11 +75,12 @@ struct Accel::Impl {
   // Embree builds a BVH per kind of primitive and traverses every one of a scene for each ray,
   // and a traversal costs about 200 instructions before it tests a box, even of a BVH that the
   // ray misses at its root. So native triangles and user geometry are two scenes, and a ray
-  // enters a scene only where it meets that scene's bounds (`reach`, grown for the double ray)
-  // before the nearest hit so far. Geometry ids run over both scenes (rtcAttachGeometryByID).
+  // enters the user scene only where it meets that scene's bounds (`userReach`, grown for the
+  // double ray) before its nearest triangle hit. Geometry ids run over both scenes
+  // (rtcAttachGeometryByID).
   RTCScene scenes[2] = {nullptr, nullptr};
   size_t sceneGeometries[2] = {0, 0};
-  Bounds3 reach[2];
+  Bounds3 userReach;
   uint32_t nextId = 0;
   bool committed = false;
   size_t bytes = 0, partBytes = 0;
@@ -131,7 +132,7 @@ struct Accel::Impl {
   // the test would spare a ray only Embree's own test of the same box.)
   bool reachesUser(const Ray& ray, double tnear, double tfar) const {
     return sceneGeometries[kUser] != 0 &&
-           (sceneGeometries[kNative] == 0 || meetsBox(reach[kUser], ray, tnear, tfar));
+           (sceneGeometries[kNative] == 0 || meetsBox(userReach, ray, tnear, tfar));
   }
   void requireCommitted(const char* what) const {
     if (!committed) fail("{}: the acceleration structure has not been committed", what);
@@ -348,15 +349,13 @@ void Accel::commit() {
   // follows it (the user geometry's address and its margin's are the two edges' tokens).
   for (const auto& g : impl_->patchGeometries) releaseEdge(g.get());
   for (const auto& g : impl_->bezierGeometries) releaseEdge(g.get());
-  for (int kind : {kNative, kUser}) {
-    rtcCommitScene(impl_->scenes[kind]);
-    if (impl_->sceneGeometries[kind] == 0) continue;
-    // The scene's float bounds, grown by 1e-5 of their extent: the double ray may meet
-    // geometry that Embree's float copy of it meets (its hits are the float test's), or the
-    // reverse, about 6e-8 of the distance travelled apart.
+  for (RTCScene scene : impl_->scenes) rtcCommitScene(scene);
+  if (impl_->sceneGeometries[kUser] != 0) {
+    // The user scene's float bounds (its primitives' boxes, already grown for the double ray),
+    // grown again by 1e-5 of their extent, against the slab test's own rounding.
     RTCBounds b;
-    rtcGetSceneBounds(impl_->scenes[kind], &b);
-    Bounds3& r = impl_->reach[kind];
+    rtcGetSceneBounds(impl_->scenes[kUser], &b);
+    Bounds3& r = impl_->userReach;
     r = Bounds3();
     r.extend(Vec3(b.lower_x, b.lower_y, b.lower_z));
     r.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
