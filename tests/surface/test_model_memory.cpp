@@ -1,6 +1,7 @@
 // What rendering and conversion charge against --max-memory per model (model_memory.h).
 #include <gtest/gtest.h>
 
+#include "quadtri/math/error.h"
 #include "quadtri/mesh/shapes.h"
 #include "quadtri/surface/bezier_intersect.h"
 #include "quadtri/surface/model.h"
