@@ -359,9 +359,7 @@ void Accel::commit() {
     r = Bounds3();
     r.extend(Vec3(b.lower_x, b.lower_y, b.lower_z));
     r.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
-    const double grow = 1e-5 * std::max(r.lo.cwiseAbs().maxCoeff(), r.hi.cwiseAbs().maxCoeff());
-    r.lo.array() -= grow;
-    r.hi.array() += grow;
+    r.inflate(1e-5 * std::max(r.lo.cwiseAbs().maxCoeff(), r.hi.cwiseAbs().maxCoeff()));
   }
   for (const auto& g : impl_->patchGeometries) acquireEdge(&g->margin);
   for (const auto& g : impl_->bezierGeometries) acquireEdge(&g->margin);
