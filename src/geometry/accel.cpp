@@ -137,6 +137,8 @@ struct Accel::Impl {
   void requireCommitted(const char* what) const {
     if (!committed) fail("{}: the acceleration structure has not been committed", what);
   }
+  RayHit hitOf(const accel_detail::TraceContext& ctx, const Ray& ray, const RTCRayHit& rayhit,
+               HitNormal normal) const;
 };
 
 Accel::Accel(const Options& options) : impl_(std::make_unique<Impl>()) {
@@ -367,23 +369,9 @@ void Accel::commit() {
   impl_->committed = true;
 }
 
-RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
-  impl_->requireCommitted("intersect");
-  accel_detail::TraceContext ctx;
-  rtcInitIntersectContext(&ctx.embree);
-  ctx.ray = &ray;
-  ctx.tnear = std::max(ray.tnear, 0.0);
-  ctx.patchT = ray.tfar;
-  RTCRayHit rayhit;
-  accel_detail::fillRay(ray, rayhit.ray);
-  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
-  // Native triangles first: their hit bounds the user geometry's search (the callbacks read it
-  // from rayhit, as they would in one scene), and the user scene is skipped where the ray
-  // meets its bounds only beyond that hit.
-  if (impl_->sceneGeometries[kNative] != 0)
-    rtcIntersect1(impl_->scenes[kNative], &ctx.embree, &rayhit);
-  if (impl_->reachesUser(ray, ctx.tnear, std::min(ray.tfar, double(rayhit.ray.tfar))))
-    rtcIntersect1(impl_->scenes[kUser], &ctx.embree, &rayhit);
+// The hit a trace left in `rayhit` and `ctx` (a single ray's, or one lane's of a packet).
+RayHit Accel::Impl::hitOf(const accel_detail::TraceContext& ctx, const Ray& ray,
+                          const RTCRayHit& rayhit, HitNormal normal) const {
   RayHit hit;
   if (rayhit.hit.geomID == accel_detail::kInvalidId) return hit;
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive &&
@@ -394,9 +382,9 @@ RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
   if (rayhit.hit.geomID == ctx.patchGeometry && rayhit.hit.primID == ctx.patchPrimitive)
     return accel_detail::patchHit(*ctx.patches, ray, ctx.patchT, rayhit.hit.geomID,
                                   rayhit.hit.primID, normal == HitNormal::Fill);
-  if (rayhit.hit.geomID < impl_->flatOwner.size() && impl_->flatOwner[rayhit.hit.geomID]) {
+  if (rayhit.hit.geomID < flatOwner.size() && flatOwner[rayhit.hit.geomID]) {
     // A flat Bézier piece traced as its triangle: the hit is the piece's, at the same (u, v).
-    const accel_detail::BezierGeometry& g = *impl_->flatOwner[rayhit.hit.geomID];
+    const accel_detail::BezierGeometry& g = *flatOwner[rayhit.hit.geomID];
     const uint32_t piece = g.flatPieces[rayhit.hit.primID];
     return accel_detail::bezierHit((*g.pieces)[piece],
                                    accel_detail::flatPieceHit((*g.pieces)[piece], ray, rayhit),
@@ -411,6 +399,101 @@ RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
   if (normal == HitNormal::Fill)
     hit.geometricNormal = safeNormalized(Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
   return hit;
+}
+
+namespace {
+
+void startTrace(accel_detail::TraceContext& ctx, const Ray& ray) {
+  ctx.ray = &ray;
+  ctx.tnear = std::max(ray.tnear, 0.0);
+  ctx.patchT = ray.tfar;
+}
+
+}  // namespace
+
+RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
+  impl_->requireCommitted("intersect");
+  accel_detail::TraceContext ctx;
+  rtcInitIntersectContext(&ctx.embree);
+  startTrace(ctx, ray);
+  RTCRayHit rayhit;
+  accel_detail::fillRay(ray, rayhit.ray);
+  rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
+  // Native triangles first: their hit bounds the user geometry's search (the callbacks read it
+  // from rayhit, as they would in one scene), and the user scene is skipped where the ray
+  // meets its bounds only beyond that hit.
+  if (impl_->sceneGeometries[kNative] != 0)
+    rtcIntersect1(impl_->scenes[kNative], &ctx.embree, &rayhit);
+  if (impl_->reachesUser(ray, ctx.tnear, std::min(ray.tfar, double(rayhit.ray.tfar))))
+    rtcIntersect1(impl_->scenes[kUser], &ctx.embree, &rayhit);
+  return impl_->hitOf(ctx, ray, rayhit, normal);
+}
+
+void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNormal normal) const {
+  impl_->requireCommitted("intersect");
+  if (hits.size() != rays.size())
+    fail("intersect: {} rays but room for {} hits", rays.size(), hits.size());
+  constexpr size_t kLanes = kPacketSize;
+  for (size_t first = 0; first < rays.size(); first += kLanes) {
+    const size_t n = std::min(kLanes, rays.size() - first);
+    // Each lane's state; the packet's context points at them, and each ray carries its lane
+    // in its id (Embree may reorder or split the packet when it calls back).
+    accel_detail::TraceContext lanes[kLanes];
+    accel_detail::TraceContext packet;
+    rtcInitIntersectContext(&packet.embree);
+    packet.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    packet.lanes = lanes;
+    RTCRayHit16 rayhit;
+    alignas(64) int valid[kLanes];  // Embree loads the mask as one vector
+    for (size_t i = 0; i < kLanes; ++i) {
+      valid[i] = i < n ? -1 : 0;
+      rayhit.hit.geomID[i] = rayhit.hit.primID[i] = rayhit.hit.instID[0][i] =
+          accel_detail::kInvalidId;
+      RTCRay single;
+      if (i < n) {
+        startTrace(lanes[i], rays[first + i]);
+        accel_detail::fillRay(rays[first + i], single);
+      } else {
+        accel_detail::fillRay(Ray(), single);  // inactive: Embree reads no more than its mask
+      }
+      rayhit.ray.org_x[i] = single.org_x;
+      rayhit.ray.org_y[i] = single.org_y;
+      rayhit.ray.org_z[i] = single.org_z;
+      rayhit.ray.dir_x[i] = single.dir_x;
+      rayhit.ray.dir_y[i] = single.dir_y;
+      rayhit.ray.dir_z[i] = single.dir_z;
+      rayhit.ray.tnear[i] = single.tnear;
+      rayhit.ray.tfar[i] = single.tfar;
+      rayhit.ray.time[i] = single.time;
+      rayhit.ray.mask[i] = single.mask;
+      rayhit.ray.id[i] = unsigned(i);
+      rayhit.ray.flags[i] = single.flags;
+    }
+    if (impl_->sceneGeometries[kNative] != 0)
+      rtcIntersect16(valid, impl_->scenes[kNative], &packet.embree, &rayhit);
+    // The user scene for the rays that meet its bounds before their triangle hit, as for one.
+    bool anyUser = false;
+    for (size_t i = 0; i < n; ++i) {
+      const Ray& ray = rays[first + i];
+      const bool reaches = impl_->reachesUser(ray, lanes[i].tnear,
+                                              std::min(ray.tfar, double(rayhit.ray.tfar[i])));
+      valid[i] = reaches ? -1 : 0;
+      anyUser |= reaches;
+    }
+    if (anyUser) rtcIntersect16(valid, impl_->scenes[kUser], &packet.embree, &rayhit);
+    for (size_t i = 0; i < n; ++i) {
+      RTCRayHit lane;
+      lane.ray.tfar = rayhit.ray.tfar[i];
+      lane.hit.geomID = rayhit.hit.geomID[i];
+      lane.hit.primID = rayhit.hit.primID[i];
+      lane.hit.u = rayhit.hit.u[i];
+      lane.hit.v = rayhit.hit.v[i];
+      lane.hit.Ng_x = rayhit.hit.Ng_x[i];
+      lane.hit.Ng_y = rayhit.hit.Ng_y[i];
+      lane.hit.Ng_z = rayhit.hit.Ng_z[i];
+      hits[first + i] = impl_->hitOf(lanes[i], rays[first + i], lane, normal);
+    }
+  }
 }
 
 bool Accel::occluded(const Ray& ray) const {

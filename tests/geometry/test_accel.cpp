@@ -251,6 +251,69 @@ TEST(Accel, SkippingTheUserSceneLosesNoHit) {
   EXPECT_GT(missesOfTheBounds, 2000);
 }
 
+TEST(Accel, PacketsHitAsSingleRaysDo) {
+  const FlushToZeroScope flushToZero;
+  // Triangles (a wall and a chip on one side), quadric patches (a sphere) and Bézier pieces
+  // (quadric-g1 on an icosphere on the other side), ids 0 to 3.
+  const std::vector<QuadricPatch> patches = spherePatches();
+  TriangleMesh wall, chip;
+  wall.positions = {Vec3(-4, -3, 1.5), Vec3(4, -3, 1.5), Vec3(4, 3, 1.5), Vec3(-4, 3, 1.5)};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  chip.positions = {Vec3(-2.8, -0.6, -0.25), Vec3(-1.6, -0.6, -0.25), Vec3(-2.2, 0.6, -0.25)};
+  chip.triangles = {{0, 1, 2}};
+  TriangleMesh moved = icosphere(1);
+  for (Vec3& p : moved.positions) p += Vec3(2.2, 0.3, 0);
+  const G1Model g1(std::make_shared<const TriangleMesh>(moved));
+  Accel accel;
+  accel.addTriangles(wall);
+  accel.addQuadricPatches(patches);
+  accel.addTriangles(chip);
+  accel.addBezierTriangles(g1.bezierPieces());
+  accel.commit();
+  Pcg32 rng(31);
+  int perGeometry[4] = {0, 0, 0, 0};
+  for (int packet = 0; packet < 600; ++packet) {
+    // Camera-like bundles from one origin, and incoherent rays; packets of every size up to
+    // past two of Embree's (37 rays are traced as 16 + 16 + 5).
+    const size_t count = packet % 40 == 39 ? 37 : 1 + size_t(packet) % Accel::kPacketSize;
+    const bool coherent = packet % 2 == 0;
+    const Vec3 eye(8 * rng.nextDouble() - 4, 6 * rng.nextDouble() - 3, -4 - 2 * rng.nextDouble());
+    const Vec3 towards = (Vec3(6 * rng.nextDouble() - 3, 2 * rng.nextDouble() - 1, 0) - eye);
+    std::vector<Ray> rays(count);
+    for (Ray& ray : rays) {
+      if (coherent) {
+        ray.origin = eye;
+        ray.direction = (towards.normalized() + 0.08 * uniformDirection(rng)).normalized();
+      } else {
+        for (int a = 0; a < 3; ++a) ray.origin[a] = 6 * rng.nextDouble() - 3;
+        ray.direction = uniformDirection(rng);
+      }
+      if (rng.nextDouble() < 0.2) ray.tnear = 0.5 * rng.nextDouble();
+      if (rng.nextDouble() < 0.2) ray.tfar = 4 * rng.nextDouble();
+    }
+    for (Accel::HitNormal normal : {Accel::HitNormal::Fill, Accel::HitNormal::Skip}) {
+      std::vector<RayHit> hits(count);
+      accel.intersect(rays, hits, normal);
+      for (size_t i = 0; i < count; ++i) {
+        const RayHit one = accel.intersect(rays[i], normal);
+        ASSERT_EQ(hits[i].geometry, one.geometry) << "packet " << packet << ", ray " << i;
+        if (!one.valid()) continue;
+        EXPECT_EQ(hits[i].primitive, one.primitive) << "packet " << packet << ", ray " << i;
+        EXPECT_EQ(hits[i].t, one.t) << "packet " << packet << ", ray " << i;
+        EXPECT_EQ(hits[i].u, one.u) << "packet " << packet << ", ray " << i;
+        EXPECT_EQ(hits[i].v, one.v) << "packet " << packet << ", ray " << i;
+        EXPECT_EQ(hits[i].geometricNormal, one.geometricNormal) << "packet " << packet;
+        EXPECT_EQ(hits[i].point, one.point) << "packet " << packet << ", ray " << i;
+        if (normal == Accel::HitNormal::Fill) ++perGeometry[one.geometry];
+      }
+    }
+  }
+  // Every kind of geometry was hit, in numbers.
+  for (int count : perGeometry) EXPECT_GT(count, 100);
+  std::vector<RayHit> two(2);
+  EXPECT_THROW(accel.intersect(std::vector<Ray>(3), two), Error);
+}
+
 // A ray leaving a convex closed surface from a hit point into the outer hemisphere of the
 // normal never meets the surface again; `offset` pushes the origin off along the normal.
 void expectNoReintersection(const Accel& accel, double offset, uint64_t seed) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "quadtri/math/vec.h"
@@ -74,6 +75,12 @@ class Accel {
   enum class HitNormal { Fill, Skip };
   /// Nearest hit in (ray.tnear, ray.tfar), or an invalid RayHit.
   RayHit intersect(const Ray& ray, HitNormal normal = HitNormal::Fill) const;
+  /// Rays traced together in a packet of Embree's (up to kPacketSize at a time): hits[i] is
+  /// exactly intersect(rays[i], normal). Coherent rays, such as a pixel's camera rays, share
+  /// the traversal.
+  static constexpr size_t kPacketSize = 16;
+  void intersect(std::span<const Ray> rays, std::span<RayHit> hits,
+                 HitNormal normal = HitNormal::Fill) const;
   /// True when anything is hit in (ray.tnear, ray.tfar).
   bool occluded(const Ray& ray) const;
   /// Every hit in (ray.tnear, ray.tfar), unordered, appended to `hits`: each candidate Embree
