@@ -1,5 +1,7 @@
 #include "quadtri/render/render_scene.h"
 
+#include <array>
+
 #include "quadtri/geometry/model_geometry.h"
 #include "quadtri/math/error.h"
 #include "quadtri/math/parallel.h"
@@ -173,8 +175,24 @@ const PerspectiveCamera& RenderScene::camera() const {
 }
 
 std::optional<SurfaceInteraction> RenderScene::intersect(const Ray& ray) const {
-  // Triangle and patch normals are derived below from the double-precision hit.
-  const RayHit hit = accel_.intersect(ray, Accel::HitNormal::Skip);
+  // Triangle and patch normals are derived from the double-precision hit (interactionOf).
+  return interactionOf(ray, accel_.intersect(ray, Accel::HitNormal::Skip));
+}
+
+void RenderScene::intersect(std::span<const Ray> rays,
+                            std::span<std::optional<SurfaceInteraction>> out) const {
+  if (out.size() != rays.size())
+    fail("intersect: {} rays but room for {} interactions", rays.size(), out.size());
+  std::array<RayHit, Accel::kPacketSize> hits;
+  for (size_t first = 0; first < rays.size(); first += hits.size()) {
+    const size_t n = std::min(hits.size(), rays.size() - first);
+    accel_.intersect(rays.subspan(first, n), std::span(hits).first(n), Accel::HitNormal::Skip);
+    for (size_t i = 0; i < n; ++i) out[first + i] = interactionOf(rays[first + i], hits[i]);
+  }
+}
+
+std::optional<SurfaceInteraction> RenderScene::interactionOf(const Ray& ray,
+                                                             const RayHit& hit) const {
   if (!hit.valid()) return std::nullopt;
   const GeometryRecord& record = records_[hit.geometry];
   SurfaceInteraction si;

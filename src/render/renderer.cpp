@@ -2,11 +2,14 @@
 
 #include <tbb/task_arena.h>
 
+#include <array>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
 #include <limits>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <string>
 #include <thread>
 
@@ -43,6 +46,12 @@ PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
   const uint64_t index =
       uint64_t(y + camera.cropY()) * uint64_t(camera.filmWidth()) + uint64_t(x + camera.cropX());
   Pcg32 rng(mix64(options.seed ^ mix64(index)), mix64(index) ^ options.seed);
+  // Camera rays (the filter's offsets) come from a stream of their own, so that a sample's
+  // path draws the same numbers however the camera rays are grouped into packets.
+  Pcg32 cameraRng(mix64(options.seed ^ mix64(index ^ 0x63616d657261ull)),
+                  mix64(index) ^ options.seed ^ 0x63616d657261ull);
+  std::array<Ray, Accel::kPacketSize> cameraRays;
+  std::array<std::optional<SurfaceInteraction>, Accel::kPacketSize> firstHits;
   const AdaptiveSampling* adaptive = integrator.adaptive();
   const uint64_t target =
       adaptive ? uint64_t(adaptive->maxSamples) : uint64_t(options.samplesPerPixel);
@@ -56,17 +65,24 @@ PixelResult renderPixel(const RenderScene& scene, const Integrator& integrator,
       batch = std::min(batch, r.samples < uint64_t(adaptive->minSamples)
                                   ? uint64_t(adaptive->minSamples) - r.samples
                                   : uint64_t(adaptive->batch));
-    for (uint64_t i = 0; i < batch; ++i) {
-      const Ray ray = camera.generateRay(centre + options.filter.sampleOffset(rng));
-      Color l = integrator.radiance(scene, ray, rng, r.rays);
-      if (!l.allFinite()) {
-        ++r.nonFinite;
-        l = Color::Zero();
+    // The batch's camera rays are traced in packets of Embree's, which share the traversal
+    // (they leave one point towards one pixel); the rest of each path goes ray by ray.
+    for (uint64_t done = 0; done < batch; done += cameraRays.size()) {
+      const size_t n = size_t(std::min<uint64_t>(cameraRays.size(), batch - done));
+      for (size_t i = 0; i < n; ++i)
+        cameraRays[i] = camera.generateRay(centre + options.filter.sampleOffset(cameraRng));
+      scene.intersect(std::span(cameraRays).first(n), std::span(firstHits).first(n));
+      for (size_t i = 0; i < n; ++i) {
+        Color l = integrator.radianceFrom(scene, cameraRays[i], firstHits[i], rng, r.rays);
+        if (!l.allFinite()) {
+          ++r.nonFinite;
+          l = Color::Zero();
+        }
+        sum += l;
+        const double lum = luminance(l);
+        lumSum += lum;
+        lumSquares += lum * lum;
       }
-      sum += l;
-      const double lum = luminance(l);
-      lumSum += lum;
-      lumSquares += lum * lum;
     }
     r.samples += batch;
     if (adaptive && r.samples >= uint64_t(adaptive->minSamples)) {

@@ -28,10 +28,11 @@ class CountingIntegrator final : public Integrator {
  public:
   CountingIntegrator(std::atomic<bool>& cancel, uint64_t stopAfterSamples)
       : cancel_(cancel), stopAfter_(stopAfterSamples) {}
-  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
-                 uint64_t& rays) const override {
+  Color radianceFrom(const RenderScene& scene, const Ray& ray,
+                     const std::optional<SurfaceInteraction>& first, Pcg32& rng,
+                     uint64_t& rays) const override {
     if (++samples_ >= stopAfter_) cancel_.store(true);
-    return path_.radiance(scene, ray, rng, rays);
+    return path_.radianceFrom(scene, ray, first, rng, rays);
   }
   std::string toString() const override { return "counting"; }
 

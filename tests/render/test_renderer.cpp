@@ -70,7 +70,8 @@ TEST(Renderer, LeavesTheCallersFloatingPointModeAsItWas) {
 // An integrator that returns NaN or infinity for some samples.
 class PoisonedIntegrator final : public Integrator {
  public:
-  Color radiance(const RenderScene&, const Ray&, Pcg32& rng, uint64_t&) const override {
+  Color radianceFrom(const RenderScene&, const Ray&, const std::optional<SurfaceInteraction>&,
+                     Pcg32& rng, uint64_t&) const override {
     const double u = rng.nextDouble();
     if (u < 0.1) return Color(std::nan(""), 1.0, 1.0);
     if (u < 0.2) return Color(kInfinity, 0.0, 0.0);
@@ -144,7 +145,8 @@ TEST(Renderer, CancelLeavesPixelsBlackAndCountsThem) {
 // An integrator whose every sample takes at least a millisecond.
 class SlowIntegrator final : public Integrator {
  public:
-  Color radiance(const RenderScene&, const Ray&, Pcg32&, uint64_t&) const override {
+  Color radianceFrom(const RenderScene&, const Ray&, const std::optional<SurfaceInteraction>&,
+                     Pcg32&, uint64_t&) const override {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
     return Color::Ones();
   }

@@ -18,11 +18,11 @@ DirectIntegrator::DirectIntegrator(const Params& params) : params_(params) {
         params.emitterSamples, params.bsdfSamples);
 }
 
-Color DirectIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
-                                 uint64_t& rays) const {
+Color DirectIntegrator::radianceFrom(const RenderScene& scene, const Ray& ray,
+                                     const std::optional<SurfaceInteraction>& si, Pcg32& rng,
+                                     uint64_t& rays) const {
   const LightSampler& lights = scene.lightSampler();
   ++rays;
-  const std::optional<SurfaceInteraction> si = scene.intersect(ray);
   if (!si) {
     const Emitter* env = scene.environment();
     return env && !params_.hideEmitters ? env->eval(Vec3::Zero(), -ray.direction) : Color::Zero();

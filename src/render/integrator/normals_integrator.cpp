@@ -4,10 +4,10 @@
 
 namespace quadtri {
 
-Color NormalsIntegrator::radiance(const RenderScene& scene, const Ray& ray, Pcg32&,
-                                  uint64_t& rays) const {
+Color NormalsIntegrator::radianceFrom(const RenderScene&, const Ray&,
+                                      const std::optional<SurfaceInteraction>& si, Pcg32&,
+                                      uint64_t& rays) const {
   ++rays;
-  const std::optional<SurfaceInteraction> si = scene.intersect(ray);
   if (!si) return Color::Zero();
   return 0.5 * (si->shadingNormal.array() + 1.0);
 }

@@ -16,8 +16,9 @@ PathIntegrator::PathIntegrator(const Params& params) : params_(params) {
   if (params.rrDepth < 1) fail("path integrator: rr_depth {}: expected at least 1", params.rrDepth);
 }
 
-Color PathIntegrator::radiance(const RenderScene& scene, const Ray& cameraRay, Pcg32& rng,
-                               uint64_t& rays) const {
+Color PathIntegrator::radianceFrom(const RenderScene& scene, const Ray& cameraRay,
+                                   const std::optional<SurfaceInteraction>& first, Pcg32& rng,
+                                   uint64_t& rays) const {
   const LightSampler& lights = scene.lightSampler();
   Color result = Color::Zero(), throughput = Color::Ones();
   Ray ray = cameraRay;
@@ -28,7 +29,7 @@ Color PathIntegrator::radiance(const RenderScene& scene, const Ray& cameraRay, P
   double eta = 1.0;
   for (int depth = 0;; ++depth) {
     ++rays;
-    const std::optional<SurfaceInteraction> si = scene.intersect(ray);
+    const std::optional<SurfaceInteraction> si = depth == 0 ? first : scene.intersect(ray);
     const bool countEmission = depth > 0 || !params_.hideEmitters;
     if (!si) {
       const Emitter* env = scene.environment();

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "quadtri/geometry/accel.h"
@@ -83,6 +84,9 @@ class RenderScene {
 
   /// Nearest hit in (ray.tnear, ray.tfar).
   std::optional<SurfaceInteraction> intersect(const Ray& ray) const;
+  /// intersect(rays[i]) for every ray, into out[i]: the rays are traced together in packets
+  /// (Accel::intersect of several rays), which coherent rays (a pixel's camera rays) share.
+  void intersect(std::span<const Ray> rays, std::span<std::optional<SurfaceInteraction>> out) const;
   bool occluded(const Ray& ray) const { return accel_.occluded(ray); }
   /// A ray leaving `si` along unit `direction`, its origin pushed by si.offset along the
   /// geometric normal to the side `direction` leaves on, so it cannot find the surface it
@@ -107,6 +111,7 @@ class RenderScene {
 
  private:
   uint32_t addRecord(GeometryRecord record, uint32_t geometryId);
+  std::optional<SurfaceInteraction> interactionOf(const Ray& ray, const RayHit& hit) const;
 
   Accel accel_;
   std::vector<GeometryRecord> records_;  ///< indexed by Embree geometry id

@@ -12,9 +12,10 @@ namespace quadtri {
 class AdaptiveIntegrator final : public Integrator {
  public:
   AdaptiveIntegrator(std::shared_ptr<const Integrator> inner, const AdaptiveSampling& sampling);
-  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
-                 uint64_t& rays) const override {
-    return inner_->radiance(scene, ray, rng, rays);
+  Color radianceFrom(const RenderScene& scene, const Ray& ray,
+                     const std::optional<SurfaceInteraction>& first, Pcg32& rng,
+                     uint64_t& rays) const override {
+    return inner_->radianceFrom(scene, ray, first, rng, rays);
   }
   const AdaptiveSampling* adaptive() const override { return &sampling_; }
   std::string toString() const override;

@@ -8,8 +8,9 @@ namespace quadtri {
 /// The shading normal at the first hit as a colour, 0.5·(n + 1) per axis; black on a miss.
 class NormalsIntegrator final : public Integrator {
  public:
-  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
-                 uint64_t& rays) const override;
+  Color radianceFrom(const RenderScene& scene, const Ray& ray,
+                     const std::optional<SurfaceInteraction>& first, Pcg32& rng,
+                     uint64_t& rays) const override;
   std::string toString() const override { return "normals"; }
 };
 

@@ -20,8 +20,9 @@ class PathIntegrator final : public Integrator {
     bool hideEmitters = false;
   };
   explicit PathIntegrator(const Params& params);
-  Color radiance(const RenderScene& scene, const Ray& ray, Pcg32& rng,
-                 uint64_t& rays) const override;
+  Color radianceFrom(const RenderScene& scene, const Ray& ray,
+                     const std::optional<SurfaceInteraction>& first, Pcg32& rng,
+                     uint64_t& rays) const override;
   std::string toString() const override;
   const Params& params() const { return params_; }
 
