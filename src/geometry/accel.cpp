@@ -475,8 +475,8 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
     bool anyUser = false;
     for (size_t i = 0; i < n; ++i) {
       const Ray& ray = rays[first + i];
-      const bool reaches = impl_->reachesUser(ray, lanes[i].tnear,
-                                              std::min(ray.tfar, double(rayhit.ray.tfar[i])));
+      const bool reaches =
+          impl_->reachesUser(ray, lanes[i].tnear, std::min(ray.tfar, double(rayhit.ray.tfar[i])));
       valid[i] = reaches ? -1 : 0;
       anyUser |= reaches;
     }

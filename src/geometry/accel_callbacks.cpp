@@ -119,8 +119,7 @@ void intersectPatchLane(const RTCIntersectFunctionNArguments* args, const PatchG
   if (ctx.hits) return collectPatchHits(patches, ctx, args->geomID, args->primID);
   // While a patch is the nearest hit (or nothing is: both ids are then invalid and patchT is
   // the ray's tfar) its exact t bounds the search; after a triangle took over, its float t does.
-  const bool patchIsNearest =
-      lane.geomID == ctx.patchGeometry && lane.primID == ctx.patchPrimitive;
+  const bool patchIsNearest = lane.geomID == ctx.patchGeometry && lane.primID == ctx.patchPrimitive;
   const double tmax = patchIsNearest ? ctx.patchT : std::min(ctx.patchT, double(lane.tfar));
   double t;
   unsigned primitive = args->primID;
@@ -235,8 +234,8 @@ void intersectBezierLane(const RTCIntersectFunctionNArguments* args, const Bezie
     const BezierTriangle& piece = pieces[args->primID];
     thread_local std::vector<BezierHit> found;
     found.clear();
-    intersectBezierTriangleAll(piece, ctx.ray->origin, ctx.ray->direction, ctx.tnear,
-                               ctx.ray->tfar, found);
+    intersectBezierTriangleAll(piece, ctx.ray->origin, ctx.ray->direction, ctx.tnear, ctx.ray->tfar,
+                               found);
     for (const BezierHit& h : found)
       ctx.hits->push_back(bezierHit(piece, h, args->geomID, args->primID));
     return;
@@ -247,15 +246,15 @@ void intersectBezierLane(const RTCIntersectFunctionNArguments* args, const Bezie
   BezierHit h;
   unsigned primitive = args->primID;
   if (!g.tracesSubPatches) {
-    if (!intersectBezierTriangle(pieces[primitive], ctx.ray->origin, ctx.ray->direction,
-                                 ctx.tnear, tmax, h))
+    if (!intersectBezierTriangle(pieces[primitive], ctx.ray->origin, ctx.ray->direction, ctx.tnear,
+                                 tmax, h))
       return;
   } else {
     const BezierSubPatch& sub = g.subPatches[primitive];
     primitive = sub.piece;
     const BezierTriangle& piece = pieces[primitive];
-    if (!intersectBezierSubPatch(piece, sub, ctx.ray->origin, ctx.ray->direction, ctx.tnear,
-                                 tmax, h, leavesFrom(*ctx.ray, args->geomID, primitive)))
+    if (!intersectBezierSubPatch(piece, sub, ctx.ray->origin, ctx.ray->direction, ctx.tnear, tmax,
+                                 h, leavesFrom(*ctx.ray, args->geomID, primitive)))
       return;
   }
   ctx.patchT = h.t;
