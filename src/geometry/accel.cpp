@@ -436,13 +436,12 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
   constexpr size_t kLanes = kPacketSize;
   for (size_t first = 0; first < rays.size(); first += kLanes) {
     const size_t n = std::min(kLanes, rays.size() - first);
-    // Each lane's state; the packet's context points at them, and each ray carries its lane
-    // in its id (Embree may reorder or split the packet when it calls back).
+    // Native triangles as one packet (no callbacks), then each ray's own context for the user
+    // scene's callbacks.
     accel_detail::TraceContext lanes[kLanes];
-    accel_detail::TraceContext packet;
-    rtcInitIntersectContext(&packet.embree);
-    packet.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    packet.lanes = lanes;
+    RTCIntersectContext packet;
+    rtcInitIntersectContext(&packet);
+    packet.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     RTCRayHit16 rayhit;
     alignas(64) int valid[kLanes];  // Embree loads the mask as one vector
     for (size_t i = 0; i < kLanes; ++i) {
@@ -470,27 +469,26 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       rayhit.ray.flags[i] = single.flags;
     }
     if (impl_->sceneGeometries[kNative] != 0)
-      rtcIntersect16(valid, impl_->scenes[kNative], &packet.embree, &rayhit);
-    // The user scene for the rays that meet its bounds before their triangle hit, as for one.
-    bool anyUser = false;
+      rtcIntersect16(valid, impl_->scenes[kNative], &packet, &rayhit);
+    // The user scene ray by ray, for the rays that meet its bounds before their triangle hit,
+    // as for one ray.
     for (size_t i = 0; i < n; ++i) {
       const Ray& ray = rays[first + i];
-      const bool reaches =
-          impl_->reachesUser(ray, lanes[i].tnear, std::min(ray.tfar, double(rayhit.ray.tfar[i])));
-      valid[i] = reaches ? -1 : 0;
-      anyUser |= reaches;
-    }
-    if (anyUser) rtcIntersect16(valid, impl_->scenes[kUser], &packet.embree, &rayhit);
-    for (size_t i = 0; i < n; ++i) {
       RTCRayHit lane;
+      accel_detail::fillRay(ray, lane.ray);
       lane.ray.tfar = rayhit.ray.tfar[i];
       lane.hit.geomID = rayhit.hit.geomID[i];
       lane.hit.primID = rayhit.hit.primID[i];
+      lane.hit.instID[0] = accel_detail::kInvalidId;
       lane.hit.u = rayhit.hit.u[i];
       lane.hit.v = rayhit.hit.v[i];
       lane.hit.Ng_x = rayhit.hit.Ng_x[i];
       lane.hit.Ng_y = rayhit.hit.Ng_y[i];
       lane.hit.Ng_z = rayhit.hit.Ng_z[i];
+      if (impl_->reachesUser(ray, lanes[i].tnear, std::min(ray.tfar, double(lane.ray.tfar)))) {
+        rtcInitIntersectContext(&lanes[i].embree);
+        rtcIntersect1(impl_->scenes[kUser], &lanes[i].embree, &lane);
+      }
       hits[first + i] = impl_->hitOf(lanes[i], rays[first + i], lane, normal);
     }
   }

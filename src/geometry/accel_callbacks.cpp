@@ -75,85 +75,45 @@ void patchBounds(const RTCBoundsFunctionArguments* args) {
   releaseEdge(&g->margin);
 }
 
-namespace {
-
-// One ray of the packet an intersect callback was handed: its trace state and where its hit
-// is written.
-struct Lane {
-  TraceContext& state;
-  float& tfar;
-  unsigned& geomID;
-  unsigned& primID;
-  unsigned& instID;
-  float& u;
-  float& v;
-};
-
-// Calls f(Lane) for every valid ray of an intersect callback: a single ray straight from the
-// RTCRayHit (the common case, kept cheap), a packet's through Embree's SOA accessors.
-template <class F>
-inline void forEachLane(const RTCIntersectFunctionNArguments* args, F&& f) {
+// Accel traces single rays (rtcIntersect1/rtcOccluded1), so every callback sees N == 1.
+void intersectPatch(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
   auto* ctx = reinterpret_cast<TraceContext*>(args->context);
-  if (args->N == 1 && !ctx->lanes) {
-    if (!args->valid[0]) return;
-    auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-    f(Lane{*ctx, rayhit->ray.tfar, rayhit->hit.geomID, rayhit->hit.primID, rayhit->hit.instID[0],
-           rayhit->hit.u, rayhit->hit.v});
-    return;
-  }
-  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
-  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (!args->valid[i]) continue;
-    TraceContext& state = ctx->lanes ? ctx->lanes[RTCRayN_id(ray, args->N, i)] : *ctx;
-    f(Lane{state, RTCRayN_tfar(ray, args->N, i), RTCHitN_geomID(hit, args->N, i),
-           RTCHitN_primID(hit, args->N, i), RTCHitN_instID(hit, args->N, i, 0),
-           RTCHitN_u(hit, args->N, i), RTCHitN_v(hit, args->N, i)});
-  }
-}
-
-void intersectPatchLane(const RTCIntersectFunctionNArguments* args, const PatchGeometry& g,
-                        const Lane& lane) {
-  TraceContext& ctx = lane.state;
-  const std::vector<QuadricPatch>& patches = *g.patches;
-  if (ctx.hits) return collectPatchHits(patches, ctx, args->geomID, args->primID);
+  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
+  const std::vector<QuadricPatch>& patches = *g->patches;
+  if (ctx->hits) return collectPatchHits(patches, *ctx, args->geomID, args->primID);
   // While a patch is the nearest hit (or nothing is: both ids are then invalid and patchT is
   // the ray's tfar) its exact t bounds the search; after a triangle took over, its float t does.
-  const bool patchIsNearest = lane.geomID == ctx.patchGeometry && lane.primID == ctx.patchPrimitive;
-  const double tmax = patchIsNearest ? ctx.patchT : std::min(ctx.patchT, double(lane.tfar));
+  const bool patchIsNearest =
+      rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
+  const double tmax =
+      patchIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
   double t;
   unsigned primitive = args->primID;
-  if (g.parts.empty()) {
-    if (!intersectPrimitive(patches, primitive, ctx.ray->origin, ctx.ray->direction, ctx.tnear,
+  if (g->parts.empty()) {
+    if (!intersectPrimitive(patches, primitive, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
                             tmax, t))
       return;
   } else {
-    const QuadricPatchPart& part = g.parts[primitive];
+    const QuadricPatchPart& part = g->parts[primitive];
     primitive = part.patch;
-    if (!intersectPrimitiveWithin(patches, primitive, part.bounds(), ctx.ray->origin,
-                                  ctx.ray->direction, ctx.tnear, tmax, t))
+    if (!intersectPrimitiveWithin(patches, primitive, part.bounds(), ctx->ray->origin,
+                                  ctx->ray->direction, ctx->tnear, tmax, t))
       return;
   }
-  ctx.patchT = t;
-  ctx.patchGeometry = args->geomID;
-  ctx.patchPrimitive = primitive;
-  ctx.patches = &patches;
-  ctx.pieces = nullptr;
-  lane.tfar = floatDown(t);
-  lane.geomID = args->geomID;
-  lane.primID = primitive;  // the patch's index, also for a part
-  lane.instID = args->context->instID[0];
-  lane.u = lane.v = 0.0f;
+  ctx->patchT = t;
+  ctx->patchGeometry = args->geomID;
+  ctx->patchPrimitive = primitive;
+  ctx->patches = &patches;
+  ctx->pieces = nullptr;
+  rayhit->ray.tfar = floatDown(t);
+  rayhit->hit.geomID = args->geomID;
+  rayhit->hit.primID = primitive;  // the patch's index, also for a part
+  rayhit->hit.instID[0] = args->context->instID[0];
+  rayhit->hit.u = rayhit->hit.v = 0.0f;
 }
 
-}  // namespace
-
-void intersectPatch(const RTCIntersectFunctionNArguments* args) {
-  const auto& g = *static_cast<const PatchGeometry*>(args->geometryUserPtr);
-  forEachLane(args, [&](const Lane& lane) { intersectPatchLane(args, g, lane); });
-}
-
-// Accel traces shadow rays singly (rtcOccluded1): the occluded callbacks see N == 1.
 void occludedPatch(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   const auto* ctx = reinterpret_cast<const TraceContext*>(args->context);
@@ -224,59 +184,53 @@ const Vec2* leavesFrom(const Ray& ray, unsigned geometry, unsigned piece) {
 
 }  // namespace
 
-namespace {
-
-void intersectBezierLane(const RTCIntersectFunctionNArguments* args, const BezierGeometry& g,
-                         const Lane& lane) {
-  TraceContext& ctx = lane.state;
-  const std::vector<BezierTriangle>& pieces = *g.pieces;
-  if (ctx.hits) {  // allHits(): every hit of the piece, without shortening the ray
+void intersectBezier(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* ctx = reinterpret_cast<TraceContext*>(args->context);
+  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
+  const std::vector<BezierTriangle>& pieces = *g->pieces;
+  if (ctx->hits) {  // allHits(): every hit of the piece, without shortening the ray
     const BezierTriangle& piece = pieces[args->primID];
     thread_local std::vector<BezierHit> found;
     found.clear();
-    intersectBezierTriangleAll(piece, ctx.ray->origin, ctx.ray->direction, ctx.tnear, ctx.ray->tfar,
-                               found);
+    intersectBezierTriangleAll(piece, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                               ctx->ray->tfar, found);
     for (const BezierHit& h : found)
-      ctx.hits->push_back(bezierHit(piece, h, args->geomID, args->primID));
+      ctx->hits->push_back(bezierHit(piece, h, args->geomID, args->primID));
     return;
   }
   // As intersectPatch: the nearest user-geometry hit so far bounds the search exactly.
-  const bool userIsNearest = lane.geomID == ctx.patchGeometry && lane.primID == ctx.patchPrimitive;
-  const double tmax = userIsNearest ? ctx.patchT : std::min(ctx.patchT, double(lane.tfar));
+  const bool userIsNearest =
+      rayhit->hit.geomID == ctx->patchGeometry && rayhit->hit.primID == ctx->patchPrimitive;
+  const double tmax = userIsNearest ? ctx->patchT : std::min(ctx->patchT, double(rayhit->ray.tfar));
   BezierHit h;
   unsigned primitive = args->primID;
-  if (!g.tracesSubPatches) {
-    if (!intersectBezierTriangle(pieces[primitive], ctx.ray->origin, ctx.ray->direction, ctx.tnear,
-                                 tmax, h))
+  if (!g->tracesSubPatches) {
+    if (!intersectBezierTriangle(pieces[primitive], ctx->ray->origin, ctx->ray->direction,
+                                 ctx->tnear, tmax, h))
       return;
   } else {
-    const BezierSubPatch& sub = g.subPatches[primitive];
+    const BezierSubPatch& sub = g->subPatches[primitive];
     primitive = sub.piece;
     const BezierTriangle& piece = pieces[primitive];
-    if (!intersectBezierSubPatch(piece, sub, ctx.ray->origin, ctx.ray->direction, ctx.tnear, tmax,
-                                 h, leavesFrom(*ctx.ray, args->geomID, primitive)))
+    if (!intersectBezierSubPatch(piece, sub, ctx->ray->origin, ctx->ray->direction, ctx->tnear,
+                                 tmax, h, leavesFrom(*ctx->ray, args->geomID, primitive)))
       return;
   }
-  ctx.patchT = h.t;
-  ctx.patchGeometry = args->geomID;
-  ctx.patchPrimitive = primitive;
-  ctx.patches = nullptr;
-  ctx.pieces = &pieces;
-  ctx.pieceU = h.u;
-  ctx.pieceV = h.v;
-  lane.tfar = floatDown(h.t);
-  lane.geomID = args->geomID;
-  lane.primID = primitive;  // the piece's index, also for a sub-patch
-  lane.instID = args->context->instID[0];
-  lane.u = float(h.u);
-  lane.v = float(h.v);
-}
-
-}  // namespace
-
-void intersectBezier(const RTCIntersectFunctionNArguments* args) {
-  const auto& g = *static_cast<const BezierGeometry*>(args->geometryUserPtr);
-  forEachLane(args, [&](const Lane& lane) { intersectBezierLane(args, g, lane); });
+  ctx->patchT = h.t;
+  ctx->patchGeometry = args->geomID;
+  ctx->patchPrimitive = primitive;
+  ctx->patches = nullptr;
+  ctx->pieces = &pieces;
+  ctx->pieceU = h.u;
+  ctx->pieceV = h.v;
+  rayhit->ray.tfar = floatDown(h.t);
+  rayhit->hit.geomID = args->geomID;
+  rayhit->hit.primID = primitive;  // the piece's index, also for a sub-patch
+  rayhit->hit.instID[0] = args->context->instID[0];
+  rayhit->hit.u = float(h.u);
+  rayhit->hit.v = float(h.v);
 }
 
 void occludedBezier(const RTCOccludedFunctionNArguments* args) {

@@ -56,10 +56,6 @@ struct TraceContext {
   const std::vector<BezierTriangle>* pieces = nullptr;
   double pieceU = 0.0, pieceV = 0.0;
   std::vector<RayHit>* hits = nullptr;  // set by allHits(): record every hit, keep none
-  // A packet's rays (Accel::intersect of several rays): the state of each, indexed by the id
-  // Embree carries with the ray (it may reorder or split a packet when it calls back). Null for
-  // a single ray, whose state is this context's own.
-  TraceContext* lanes = nullptr;
 };
 
 /// A patch hit at t, its normal filled when `withNormal`.
@@ -73,8 +69,7 @@ BezierHit flatPieceHit(const BezierTriangle& piece, const Ray& ray, const RTCRay
 /// Embree's float copy of the ray, its interval rounded outward.
 void fillRay(const Ray& ray, RTCRay& out);
 
-// The callbacks Embree calls. The intersect callbacks take packets (N rays, each with its
-// lane's state); the others single rays (N == 1).
+// The callbacks Embree calls (single rays: N == 1).
 void collectTriangleHit(const RTCFilterFunctionNArguments* args);
 void patchBounds(const RTCBoundsFunctionArguments* args);
 void intersectPatch(const RTCIntersectFunctionNArguments* args);
