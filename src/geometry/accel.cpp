@@ -433,6 +433,12 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
   impl_->requireCommitted("intersect");
   if (hits.size() != rays.size())
     fail("intersect: {} rays but room for {} hits", rays.size(), hits.size());
+  if (impl_->sceneGeometries[kNative] == 0) {
+    // Only user geometry: its callbacks take one ray at a time, so a packet would only add the
+    // copying in and out.
+    for (size_t i = 0; i < rays.size(); ++i) hits[i] = intersect(rays[i], normal);
+    return;
+  }
   constexpr size_t kLanes = kPacketSize;
   for (size_t first = 0; first < rays.size(); first += kLanes) {
     const size_t n = std::min(kLanes, rays.size() - first);
@@ -468,8 +474,7 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       rayhit.ray.id[i] = unsigned(i);
       rayhit.ray.flags[i] = single.flags;
     }
-    if (impl_->sceneGeometries[kNative] != 0)
-      rtcIntersect16(valid, impl_->scenes[kNative], &packet, &rayhit);
+    rtcIntersect16(valid, impl_->scenes[kNative], &packet, &rayhit);
     // The user scene ray by ray, for the rays that meet its bounds before their triangle hit,
     // as for one ray.
     for (size_t i = 0; i < n; ++i) {

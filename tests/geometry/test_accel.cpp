@@ -312,6 +312,26 @@ TEST(Accel, PacketsHitAsSingleRaysDo) {
   for (int count : perGeometry) EXPECT_GT(count, 100);
   std::vector<RayHit> two(2);
   EXPECT_THROW(accel.intersect(std::vector<Ray>(3), two), Error);
+
+  // Without native triangles the rays go one by one: the same hits.
+  Accel patchesOnly;
+  patchesOnly.addQuadricPatches(patches);
+  patchesOnly.commit();
+  std::vector<Ray> rays(40);
+  for (Ray& ray : rays) {
+    ray.origin = 3.0 * uniformDirection(rng);
+    ray.direction = (0.5 * uniformDirection(rng) - ray.origin).normalized();
+  }
+  std::vector<RayHit> hits(rays.size());
+  patchesOnly.intersect(rays, hits);
+  int valid = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const RayHit one = patchesOnly.intersect(rays[i]);
+    ASSERT_EQ(hits[i].geometry, one.geometry) << "ray " << i;
+    EXPECT_EQ(hits[i].t, one.t) << "ray " << i;
+    valid += one.valid();
+  }
+  EXPECT_GT(valid, 30);
 }
 
 // A ray leaving a convex closed surface from a hit point into the outer hemisphere of the
