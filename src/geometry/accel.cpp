@@ -442,9 +442,7 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
   constexpr size_t kLanes = kPacketSize;
   for (size_t first = 0; first < rays.size(); first += kLanes) {
     const size_t n = std::min(kLanes, rays.size() - first);
-    // Native triangles as one packet (no callbacks), then each ray's own context for the user
-    // scene's callbacks.
-    accel_detail::TraceContext lanes[kLanes];
+    // Native triangles as one packet (no callbacks)...
     RTCIntersectContext packet;
     rtcInitIntersectContext(&packet);
     packet.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -455,12 +453,8 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       rayhit.hit.geomID[i] = rayhit.hit.primID[i] = rayhit.hit.instID[0][i] =
           accel_detail::kInvalidId;
       RTCRay single;
-      if (i < n) {
-        startTrace(lanes[i], rays[first + i]);
-        accel_detail::fillRay(rays[first + i], single);
-      } else {
-        accel_detail::fillRay(Ray(), single);  // inactive: Embree reads no more than its mask
-      }
+      // An inactive lane gets a valid ray all the same, though Embree only reads the active.
+      accel_detail::fillRay(i < n ? rays[first + i] : Ray(), single);
       rayhit.ray.org_x[i] = single.org_x;
       rayhit.ray.org_y[i] = single.org_y;
       rayhit.ray.org_z[i] = single.org_z;
@@ -471,14 +465,16 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       rayhit.ray.tfar[i] = single.tfar;
       rayhit.ray.time[i] = single.time;
       rayhit.ray.mask[i] = single.mask;
-      rayhit.ray.id[i] = unsigned(i);
+      rayhit.ray.id[i] = single.id;
       rayhit.ray.flags[i] = single.flags;
     }
     rtcIntersect16(valid, impl_->scenes[kNative], &packet, &rayhit);
-    // The user scene ray by ray, for the rays that meet its bounds before their triangle hit,
-    // as for one ray.
+    // ...then each ray on its own through the user scene, where it meets the scene's bounds
+    // before its triangle hit, as a single ray does.
     for (size_t i = 0; i < n; ++i) {
       const Ray& ray = rays[first + i];
+      accel_detail::TraceContext ctx;
+      startTrace(ctx, ray);
       RTCRayHit lane;
       accel_detail::fillRay(ray, lane.ray);
       lane.ray.tfar = rayhit.ray.tfar[i];
@@ -490,11 +486,11 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       lane.hit.Ng_x = rayhit.hit.Ng_x[i];
       lane.hit.Ng_y = rayhit.hit.Ng_y[i];
       lane.hit.Ng_z = rayhit.hit.Ng_z[i];
-      if (impl_->reachesUser(ray, lanes[i].tnear, std::min(ray.tfar, double(lane.ray.tfar)))) {
-        rtcInitIntersectContext(&lanes[i].embree);
-        rtcIntersect1(impl_->scenes[kUser], &lanes[i].embree, &lane);
+      if (impl_->reachesUser(ray, ctx.tnear, std::min(ray.tfar, double(lane.ray.tfar)))) {
+        rtcInitIntersectContext(&ctx.embree);
+        rtcIntersect1(impl_->scenes[kUser], &ctx.embree, &lane);
       }
-      hits[first + i] = impl_->hitOf(lanes[i], rays[first + i], lane, normal);
+      hits[first + i] = impl_->hitOf(ctx, ray, lane, normal);
     }
   }
 }
