@@ -4,8 +4,9 @@
 //
 //   Render/<model>   one 128×128, 16 spp render on 2 threads; rays/s = RenderStats.rays/seconds,
 //                    pt/raw = that ÷ the raw rays/s measured once at setup.
-//   Raw/<model>/...  the same number of camera rays (jittered film positions, pixel order), or
-//                    of incoherent rays (camera position to uniform points in the scene bounds),
+//   Raw/<model>/...  the same number of camera rays (jittered film positions, pixel order, a
+//                    pixel's 16 traced together as the renderer traces them), or of incoherent
+//                    rays (camera position to uniform points in the scene bounds, one by one),
 //                    traced through the scene on 2 threads; only the intersect calls are timed.
 //
 //   Ratio/<scene>    `shading`, `quadric-implicit`, `quadric-implicit-robust` and `quadric-g1`
@@ -38,6 +39,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -72,8 +75,10 @@ struct TraceTiming {
 
 /// Traces `rays` through `scene` on kThreads threads (contiguous slices, as the renderer's tiles
 /// keep neighbouring rays together) and times the intersect calls alone: the clock starts once
-/// every thread is ready and stops when the last one finishes.
-TraceTiming traceBatch(const RenderScene& scene, const std::vector<Ray>& rays) {
+/// every thread is ready and stops when the last one finishes. With `packets`, kSamplesPerPixel
+/// rays at a time (a pixel's camera rays) go through the packet call, as the renderer traces
+/// them; otherwise one by one.
+TraceTiming traceBatch(const RenderScene& scene, const std::vector<Ray>& rays, bool packets) {
   std::vector<size_t> hits(kThreads, 0);
   std::vector<double> finished(kThreads, 0.0);
   std::atomic<int> ready{0};
@@ -89,7 +94,17 @@ TraceTiming traceBatch(const RenderScene& scene, const std::vector<Ray>& rays) {
       ready.fetch_add(1);
       while (!go.load(std::memory_order_acquire)) std::this_thread::yield();
       size_t count = 0;
-      for (size_t i = begin; i < end; ++i) count += scene.intersect(rays[i]).has_value() ? 1 : 0;
+      if (packets) {
+        std::array<std::optional<SurfaceInteraction>, kSamplesPerPixel> out;
+        const std::span<const Ray> all(rays);
+        for (size_t i = begin; i < end; i += out.size()) {
+          const size_t n = std::min(out.size(), end - i);
+          scene.intersect(all.subspan(i, n), std::span(out).first(n));
+          for (size_t k = 0; k < n; ++k) count += out[k].has_value() ? 1 : 0;
+        }
+      } else {
+        for (size_t i = begin; i < end; ++i) count += scene.intersect(rays[i]).has_value() ? 1 : 0;
+      }
       finished[size_t(w)] = std::chrono::duration<double>(Clock::now() - start).count();
       hits[size_t(w)] = count;
     });
@@ -146,10 +161,10 @@ std::map<std::string, double>& renderSeconds() {
 }
 
 /// Fastest of kRawPasses traces of `rays`.
-TraceTiming bestTrace(const RenderScene& scene, const std::vector<Ray>& rays) {
-  TraceTiming best = traceBatch(scene, rays);
+TraceTiming bestTrace(const RenderScene& scene, const std::vector<Ray>& rays, bool packets) {
+  TraceTiming best = traceBatch(scene, rays, packets);
   for (int pass = 1; pass < kRawPasses; ++pass) {
-    const TraceTiming t = traceBatch(scene, rays);
+    const TraceTiming t = traceBatch(scene, rays, packets);
     if (t.seconds < best.seconds) best = t;
   }
   return best;
@@ -171,8 +186,8 @@ BenchScene& benchScene(const std::string& model) {
   bench.camera = cameraRays(scene.camera(), rng);
   const Vec3 eye = scene.camera().generateRay(Vec2(0.5 * kResolution, 0.5 * kResolution)).origin;
   bench.incoherent = incoherentRays(eye, scene.bounds(), bench.camera.size(), rng);
-  const double seconds =
-      bestTrace(scene, bench.camera).seconds + bestTrace(scene, bench.incoherent).seconds;
+  const double seconds = bestTrace(scene, bench.camera, true).seconds +
+                         bestTrace(scene, bench.incoherent, false).seconds;
   bench.rawRaysPerSecond = double(bench.camera.size() + bench.incoherent.size()) / seconds;
   return bench;
 }
@@ -203,7 +218,7 @@ void rawModel(benchmark::State& state, const std::string& model, bool coherent) 
   double seconds = 0.0;
   size_t hits = 0;
   for (auto _ : state) {
-    const TraceTiming t = traceBatch(*bench.built.scene, rays);
+    const TraceTiming t = traceBatch(*bench.built.scene, rays, coherent);
     state.SetIterationTime(t.seconds);
     seconds += t.seconds;
     hits = t.hits;
