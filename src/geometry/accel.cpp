@@ -453,8 +453,9 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       rayhit.hit.geomID[i] = rayhit.hit.primID[i] = rayhit.hit.instID[0][i] =
           accel_detail::kInvalidId;
       RTCRay single;
-      // An inactive lane gets a valid ray all the same, though Embree only reads the active.
-      accel_detail::fillRay(i < n ? rays[first + i] : Ray(), single);
+      // An inactive lane gets a defined ray all the same, though Embree only reads the active.
+      static const Ray kIdle{Vec3::Zero(), Vec3::UnitZ()};
+      accel_detail::fillRay(i < n ? rays[first + i] : kIdle, single);
       rayhit.ray.org_x[i] = single.org_x;
       rayhit.ray.org_y[i] = single.org_y;
       rayhit.ray.org_z[i] = single.org_z;
@@ -481,11 +482,13 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       lane.hit.geomID = rayhit.hit.geomID[i];
       lane.hit.primID = rayhit.hit.primID[i];
       lane.hit.instID[0] = accel_detail::kInvalidId;
-      lane.hit.u = rayhit.hit.u[i];
-      lane.hit.v = rayhit.hit.v[i];
-      lane.hit.Ng_x = rayhit.hit.Ng_x[i];
-      lane.hit.Ng_y = rayhit.hit.Ng_y[i];
-      lane.hit.Ng_z = rayhit.hit.Ng_z[i];
+      if (lane.hit.geomID != accel_detail::kInvalidId) {  // Embree wrote the rest only on a hit
+        lane.hit.u = rayhit.hit.u[i];
+        lane.hit.v = rayhit.hit.v[i];
+        lane.hit.Ng_x = rayhit.hit.Ng_x[i];
+        lane.hit.Ng_y = rayhit.hit.Ng_y[i];
+        lane.hit.Ng_z = rayhit.hit.Ng_z[i];
+      }
       if (impl_->reachesUser(ray, ctx.tnear, std::min(ray.tfar, double(lane.ray.tfar)))) {
         rtcInitIntersectContext(&ctx.embree);
         rtcIntersect1(impl_->scenes[kUser], &ctx.embree, &lane);

@@ -77,6 +77,7 @@ RenderKeys renderKeys(const SceneDescription& d, const RenderOptions& options,
                       const std::optional<std::string>& modelOverride, const FileDigests* files) {
   KeyPair h(files);
   h.add(std::string("quadtri " QUADTRI_VERSION " render state"));
+  h.add(kSamplingScheme);
   h.file(d.file);
   const SensorDesc& s = d.sensor;
   h.addMatrix(s.toWorld);

@@ -36,7 +36,8 @@ Read readExr(const fs::path& path) {
   return r;
 }
 
-// A 24x18 film: a diffuse sphere under a constant emitter, 3 samples per pixel.
+// A 24x18 film: a diffuse sphere before a wall (triangles, so camera rays are traced in
+// packets) under a constant emitter, 3 samples per pixel.
 fs::path writeScene(const fs::path& dir) {
   std::ofstream(dir / "scene.xml") << R"(<scene version="3.0.0">
   <integrator type="path"><integer name="max_depth" value="3"/></integrator>
@@ -48,6 +49,10 @@ fs::path writeScene(const fs::path& dir) {
   </sensor>
   <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>
   <shape type="sphere"><bsdf type="diffuse"/></shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="3, 3, 1"/><translate value="0, 0, -1.5"/></transform>
+    <bsdf type="diffuse"/>
+  </shape>
 </scene>
 )";
   return dir / "scene.xml";

@@ -243,11 +243,13 @@ TEST(Accel, FlatBezierPiecesAreTracedAsTheirTriangles) {
   const uint32_t id = accel.addBezierTriangles(pieces);
   accel.commit();
   int flatHits = 0, curvedHits = 0;
+  std::vector<Ray> rays;
   for (int i = 0; i < 20000; ++i) {
     const Vec3 target(3.0 * rng.nextDouble() - 0.5, 3.0 * rng.nextDouble() - 0.5,
                       3.0 * rng.nextDouble() - 0.5);
     const Vec3 d = uniformDirection(rng);
     const Ray ray{target - 4.0 * d, d, 0.0, 4.0 + 4.0 * rng.nextDouble()};
+    rays.push_back(ray);
     BezierHit best;
     uint32_t bestPiece = ~0u;
     for (uint32_t p = 0; p < pieces.size(); ++p) {
@@ -280,6 +282,18 @@ TEST(Accel, FlatBezierPiecesAreTracedAsTheirTriangles) {
   }
   EXPECT_GT(flatHits, 1000);
   EXPECT_GT(curvedHits, 1000);
+  // Traced in packets (the flat pieces through Embree's packet of triangles): the same hits.
+  std::vector<RayHit> packed(rays.size());
+  accel.intersect(rays, packed);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const RayHit one = accel.intersect(rays[i]);
+    ASSERT_EQ(packed[i].primitive, one.primitive) << i;
+    if (!one.valid()) continue;
+    EXPECT_EQ(packed[i].t, one.t) << i;
+    EXPECT_EQ(packed[i].u, one.u) << i;
+    EXPECT_EQ(packed[i].v, one.v) << i;
+    EXPECT_EQ(packed[i].point, one.point) << i;
+  }
 }
 
 // isAffine holds at any scale and fails for a control point off the linear one by more than the

@@ -18,6 +18,11 @@ namespace fs = std::filesystem;
 
 void sphereScene(RenderScene& scene, int width, int height) {
   scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false, diffuse(0.6), std::nullopt, "sphere");
+  // A wall of triangles behind it, so that camera rays go through Embree's packets.
+  TriangleMesh wall;
+  wall.positions = {Vec3(-3, -3, -1.5), Vec3(3, -3, -1.5), Vec3(3, 3, -1.5), Vec3(-3, 3, -1.5)};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  addMesh(scene, std::move(wall), "flat", diffuse(0.5));
   scene.setEnvironment(Color::Constant(0.8));
   scene.setCamera(makeCamera(Vec3(0, 0, 3.5), Vec3::Zero(), 45.0, width, height));
   scene.commit();

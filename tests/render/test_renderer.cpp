@@ -21,8 +21,18 @@ void furnaceScene(RenderScene& scene, int width, int height) {
 }
 
 TEST(Renderer, ImageDoesNotDependOnThreadCount) {
+  // The furnace's sphere on a floor of triangles, so that camera rays go through Embree's
+  // packets; the film not a multiple of the tile size.
   RenderScene scene;
-  furnaceScene(scene, 37, 21);  // not a multiple of the tile size
+  scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false, diffuse(0.8), std::nullopt, "sphere");
+  TriangleMesh floor;
+  floor.positions = {Vec3(-4, -1.2, -4), Vec3(4, -1.2, -4), Vec3(4, -1.2, 4), Vec3(-4, -1.2, 4)};
+  floor.triangles = {{0, 2, 1}, {0, 3, 2}};
+  addMesh(scene, std::move(floor), "flat", diffuse(0.5));
+  scene.addPointLight(Vec3(2, 3, 2), Color::Constant(10.0));
+  scene.setEnvironment(Color::Constant(0.5));
+  scene.setCamera(makeCamera(Vec3(0, 0.3, 3.5), Vec3::Zero(), 45.0, 37, 21));
+  scene.commit();
   const PathIntegrator path({});
   RenderOptions options;
   options.samplesPerPixel = 4;
@@ -43,6 +53,26 @@ TEST(Renderer, ImageDoesNotDependOnThreadCount) {
   for (size_t i = 0; i < one.image.pixels.size(); ++i)
     differing += (one.image.pixels[i] != other.image.pixels[i]).any();
   EXPECT_GT(differing, one.image.pixels.size() / 2);
+  // Adaptive batches that are not multiples of a packet (20, then 7 at a time).
+  AdaptiveSampling sampling;
+  sampling.minSamples = 20;
+  sampling.batch = 7;
+  sampling.maxSamples = 41;
+  sampling.threshold = 0.02;
+  const AdaptiveIntegrator adaptive(std::make_shared<PathIntegrator>(PathIntegrator::Params{}),
+                                    sampling);
+  options.seed = 11;
+  options.threads = 1;
+  const RenderResult adaptiveOne = render(scene, adaptive, options);
+  options.threads = 2;
+  const RenderResult adaptiveTwo = render(scene, adaptive, options);
+  for (size_t i = 0; i < adaptiveOne.image.pixels.size(); ++i) {
+    ASSERT_TRUE((adaptiveOne.image.pixels[i] == adaptiveTwo.image.pixels[i]).all()) << i;
+    ASSERT_EQ(adaptiveOne.pixelSamples[i], adaptiveTwo.pixelSamples[i]) << "pixel " << i;
+  }
+  // Both stopping points were reached: 20 + 7k samples, some pixels stopping early.
+  EXPECT_EQ(adaptiveOne.stats.minPixelSamples, 20u);
+  EXPECT_EQ(adaptiveOne.stats.maxPixelSamples, 41u);
 }
 
 TEST(Renderer, LeavesTheCallersFloatingPointModeAsItWas) {

@@ -75,9 +75,11 @@ class Accel {
   enum class HitNormal { Fill, Skip };
   /// Nearest hit in (ray.tnear, ray.tfar), or an invalid RayHit.
   RayHit intersect(const Ray& ray, HitNormal normal = HitNormal::Fill) const;
-  /// Rays traced together in a packet of Embree's (up to kPacketSize at a time): hits[i] is
-  /// exactly intersect(rays[i], normal). Coherent rays, such as a pixel's camera rays, share
-  /// the traversal.
+  /// Rays traced together (up to kPacketSize at a time): the native triangles as one packet
+  /// of Embree's, which coherent rays such as a pixel's camera rays share, then each ray alone
+  /// through the user geometry. hits[i] is intersect(rays[i], normal): the same geometry, t and
+  /// point, bit for bit in the tests; where two triangles are hit at exactly the same t,
+  /// Embree's packet and single-ray kernels may settle the tie differently.
   static constexpr size_t kPacketSize = 16;
   void intersect(std::span<const Ray> rays, std::span<RayHit> hits,
                  HitNormal normal = HitNormal::Fill) const;

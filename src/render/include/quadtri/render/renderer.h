@@ -16,6 +16,11 @@ namespace quadtri {
 
 class RenderScene;
 
+/// How a pixel draws its samples: raised whenever a change gives the same seed other samples,
+/// so that render states and tiles of the old scheme are not resumed or merged with the new.
+/// 2: camera rays from a stream of their own, traced in packets.
+inline constexpr int kSamplingScheme = 2;
+
 struct RenderOptions {
   int samplesPerPixel = 16;  ///< fixed count; adaptive integrators use their own bounds
   uint64_t seed = 0;
