@@ -92,35 +92,41 @@ Rays raysOf(py::handle origins, py::handle directions, double tnear, double tfar
   return r;
 }
 
-// Runs f(i) for every ray in parallel, without the GIL, on threads in Embree's float mode.
+// Runs f(range) over slices of [0, count) in parallel, without the GIL, on threads in Embree's
+// float mode.
 template <typename F>
-void forEachRay(size_t count, F f) {
+void forEachSlice(size_t count, F f) {
   LibraryCall call;
   parallelForRange(tbb::blocked_range<size_t>(0, count, 256),
                    [&](const tbb::blocked_range<size_t>& range) {
                      const FlushToZeroScope flushToZero;
-                     for (size_t i = range.begin(); i != range.end(); ++i) f(i);
+                     f(range.begin(), range.end());
                    });
 }
 
-// Runs f(i, hit) with every ray's nearest hit, like forEachRay; the rays are traced
+// Runs f(i) for every ray, as forEachSlice does.
+template <typename F>
+void forEachRay(size_t count, F f) {
+  forEachSlice(count, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i != end; ++i) f(i);
+  });
+}
+
+// Runs f(i, hit) with every ray's nearest hit, as forEachSlice does; the rays are traced
 // Accel::kPacketSize at a time (RenderScene::intersect of a span: Embree's packets, which
 // coherent rays such as a camera's share, and every ray's hit is the one it gets alone).
 template <typename F>
 void forEachHit(const RenderScene& scene, const Rays& rays, F f) {
-  LibraryCall call;
-  parallelForRange(
-      tbb::blocked_range<size_t>(0, rays.count, 256), [&](const tbb::blocked_range<size_t>& range) {
-        const FlushToZeroScope flushToZero;
-        std::array<Ray, Accel::kPacketSize> batch;
-        std::array<std::optional<SurfaceInteraction>, Accel::kPacketSize> hits;
-        for (size_t first = range.begin(); first < range.end(); first += batch.size()) {
-          const size_t n = std::min(batch.size(), range.end() - first);
-          for (size_t k = 0; k < n; ++k) batch[k] = rays.ray(first + k);
-          scene.intersect(std::span<const Ray>(batch).first(n), std::span(hits).first(n));
-          for (size_t k = 0; k < n; ++k) f(first + k, hits[k]);
-        }
-      });
+  forEachSlice(rays.count, [&](size_t begin, size_t end) {
+    std::array<Ray, Accel::kPacketSize> batch;
+    std::array<std::optional<SurfaceInteraction>, Accel::kPacketSize> hits;
+    for (size_t first = begin; first < end; first += batch.size()) {
+      const size_t n = std::min(batch.size(), end - first);
+      for (size_t k = 0; k < n; ++k) batch[k] = rays.ray(first + k);
+      scene.intersect(std::span<const Ray>(batch).first(n), std::span(hits).first(n));
+      for (size_t k = 0; k < n; ++k) f(first + k, hits[k]);
+    }
+  });
 }
 
 }  // namespace

@@ -27,9 +27,11 @@ Color PathIntegrator::radianceFrom(const RenderScene& scene, const Ray& cameraRa
   double previousPdf = 0.0;
   bool previousDelta = true;
   double eta = 1.0;
+  std::optional<SurfaceInteraction> traced;  // the hits after the first, which the caller traced
   for (int depth = 0;; ++depth) {
     ++rays;
-    const std::optional<SurfaceInteraction> si = depth == 0 ? first : scene.intersect(ray);
+    if (depth > 0) traced = scene.intersect(ray);
+    const std::optional<SurfaceInteraction>& si = depth == 0 ? first : traced;
     const bool countEmission = depth > 0 || !params_.hideEmitters;
     if (!si) {
       const Emitter* env = scene.environment();
