@@ -164,6 +164,14 @@ std::map<std::string, double>& renderSeconds() {
   return seconds;
 }
 
+/// pt/raw per model, filled by the Render benchmarks that ran.
+std::map<std::string, double>& pathTracerShare() {
+  static std::map<std::string, double> share;
+  return share;
+}
+// The path tracer's rays/s as a share of raw Embree throughput that `shading` should reach.
+constexpr double kPathTracerShareTarget = 0.75;
+
 /// Raw rays/s of one pass over both batches: the camera rays as packets (as the renderer traces
 /// them), then the incoherent rays one by one.
 double rawThroughput(const RenderScene& scene, const BenchScene& bench) {
@@ -220,6 +228,7 @@ void renderModel(benchmark::State& state, const std::string& model) {
   state.counters["rays/s"] = raysPerSecond;
   state.counters["raw_rays/s"] = bench.rawRaysPerSecond;
   state.counters["pt/raw"] = double(fastestRays) / fastest / bench.rawRaysPerSecond;
+  pathTracerShare()[model] = state.counters["pt/raw"];
   state.counters["pt_mean/raw"] = raysPerSecond / bench.rawRaysPerSecond;
   state.counters["rays/sample"] =
       double(rays) / (double(state.iterations()) * kResolution * kResolution * kSamplesPerPixel);
@@ -452,13 +461,17 @@ void printRatioSummary(const std::vector<RatioScene>& scenes) {
 void printSummary() {
   const auto shading = renderSeconds().find("shading");
   if (shading == renderSeconds().end()) return;
-  fmt::print("\nrender time at {}x{}, {} spp, {} threads (ratio to shading):\n", kResolution,
-             kResolution, kSamplesPerPixel, kThreads);
+  fmt::print("\nrender time at {}x{}, {} spp, {} threads (ratio to shading; pt/raw):\n",
+             kResolution, kResolution, kSamplesPerPixel, kThreads);
   for (const char* model : kModels) {
     const auto it = renderSeconds().find(model);
     if (it == renderSeconds().end()) continue;
-    fmt::print("  {:<24} {:8.3f} s  {:6.2f}x\n", model, it->second, it->second / shading->second);
+    fmt::print("  {:<24} {:8.3f} s  {:6.2f}x  {:5.3f}\n", model, it->second,
+               it->second / shading->second, pathTracerShare()[model]);
   }
+  const double share = pathTracerShare()["shading"];
+  fmt::print("  path tracer against raw Embree on shading: pt/raw {:.3f} (target >= {}) {}\n",
+             share, kPathTracerShareTarget, share >= kPathTracerShareTarget ? "met" : "MISSED");
 }
 
 }  // namespace
