@@ -208,8 +208,11 @@ std::optional<SurfaceInteraction> RenderScene::interactionOf(const Ray& ray,
     si.geometricNormal = hit.geometricNormal;
     if (si.geometricNormal.squaredNorm() == 0.0) si.geometricNormal = -ray.direction;
     si.shadingNormal = si.geometricNormal;
-    const Bounds3 box = piece.bounds();
-    si.offset = floatErrorOffset(std::max({maxAbs(si.p), maxAbs(box.lo), maxAbs(box.hi)}));
+    // The largest coordinate of the hit and of the piece's control points (those of its box's
+    // corners, without building the box).
+    double extent = maxAbs(si.p);
+    for (const Vec3& c : piece.b) extent = std::max(extent, maxAbs(c));
+    si.offset = floatErrorOffset(extent);
     si.liftedP = si.p;
     return si;
   }

@@ -115,13 +115,21 @@ bool newton3(const BezierTriangle& piece, const Vec3& o, const Vec3& d, double& 
     if (settled || quadratic) {
       const P3 r{p.x - o.x(), p.y - o.y(), p.z - o.z()};
       const double tp = (r.x * d.x() + r.y * d.y() + r.z * d.z()) / dd;
-      // The box of the control points, only once the step has settled (the piece stores none).
-      const Bounds3 box = piece.bounds();
-      const double boxSize = (box.hi - box.lo).maxCoeff();
-      const double residual = (settled ? 1e-9 : 1e-6) *
-                              (std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) + boxSize);
-      if (std::abs(r.x - tp * d.x()) <= residual && std::abs(r.y - tp * d.y()) <= residual &&
-          std::abs(r.z - tp * d.z()) <= residual) {
+      const double tolerance = settled ? 1e-9 : 1e-6;
+      const double farthest = std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)});
+      const auto onLine = [&](double boxSize) {
+        const double residual = tolerance * (farthest + boxSize);
+        return std::abs(r.x - tp * d.x()) <= residual && std::abs(r.y - tp * d.y()) <= residual &&
+               std::abs(r.z - tp * d.z()) <= residual;
+      };
+      // The box of the control points (the piece stores none) only widens the tolerance, so it
+      // is computed only for a point that the distance from o alone does not accept: nearly
+      // always the point is on the line far within that.
+      const auto boxSize = [&] {
+        const Bounds3 box = piece.bounds();
+        return (box.hi - box.lo).maxCoeff();
+      };
+      if (onLine(0.0) || onLine(boxSize())) {
         u += su;
         v += sv;
         t += st;
@@ -192,24 +200,36 @@ inline bool crossesPrism(const BezierSubPatch& sub, const Vec3& o, const Vec3& d
   return true;
 }
 
+// At most one root in the region when every projected cross of derivative control vectors has
+// the sign of d·axis (the injectivity test of slopes(), from the precomputed cone).
+inline bool certifies(const BezierSubPatch& sub, const Vec3& d) {
+  const double da = dotf(d, sub.axis), sinCone = double(sub.sinCone);
+  return da * da > sinCone * sinCone * d.squaredNorm();
+}
+
+// A ray that leaves the region (`from`: see intersectBezierSubPatch), where the region's cone
+// certifies it, meets the region at most once: there, at its origin. About half the regions a
+// bounce or shadow ray is tested against are the one it leaves; this spares them the prism.
+inline bool leavesRegion(const BezierSubPatch& sub, const Vec3& d, const Vec2* from) {
+  if (!from || !certifies(sub, d)) return false;
+  double cu[3], cv[3];
+  sub.corners(cu, cv);
+  return inTriangle(cu, cv, from->x(), from->y());
+}
+
 // The fast path of a sub-patch the ray crosses the prism of: Newton from where the ray crosses
 // the corner triangle's plane. Hit and None are final: the cone proves that the ray meets the
 // region at most once. Candidate is a root of the region in range, but where the ray may meet
-// the region twice; Unknown leaves the region to the subdivision search. `from`: see
-// intersectBezierSubPatch.
+// the region twice; Unknown leaves the region to the subdivision search. (A ray that leaves the
+// region never gets here: leavesRegion.)
 [[gnu::noinline]] Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub,
                                        const Vec3& o, const Vec3& d, double tmin, double tmax,
-                                       const Vec2* from, const PrismCrossing& prism,
+                                       const PrismCrossing& prism,
                                        BezierHit& hit) {
   const auto [ho, hd, a1, b1, a2, b2] = prism;
-  // At most one root in the region when every projected cross of derivative control vectors has
-  // the sign of d·axis (the injectivity test of slopes(), from the precomputed cone).
-  const double da = dotf(d, sub.axis), sinCone = double(sub.sinCone);
-  const bool injective = da * da > sinCone * sinCone * d.squaredNorm();
+  const bool injective = certifies(sub, d);
   double cu[3], cv[3];
   sub.corners(cu, cv);
-  // A ray that leaves the region meets it at most once: there, at its origin.
-  if (injective && from && inTriangle(cu, cv, from->x(), from->y())) return Solved::None;
   double t = -ho / hd;
   if (!std::isfinite(t)) return Solved::Unknown;
   double l1 = std::max(a1 + t * b1, 0.0), l2 = std::max(a2 + t * b2, 0.0);
@@ -252,9 +272,10 @@ bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& 
                              const Vec3& d, double tmin, double tmax, BezierHit& hit,
                              const Vec2* from) {
   PrismCrossing prism;
-  if (!(tmin < tmax) || !crossesPrism(sub, o, d, tmin, tmax, prism)) return false;
+  if (!(tmin < tmax) || leavesRegion(sub, d, from) || !crossesPrism(sub, o, d, tmin, tmax, prism))
+    return false;
   BezierHit candidate;
-  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, prism, candidate)) {
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, prism, candidate)) {
     case Solved::Hit:
       hit = candidate;
       return true;
@@ -281,9 +302,10 @@ bool intersectBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& 
 bool occludesBezierSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub, const Vec3& o,
                             const Vec3& d, double tmin, double tmax, const Vec2* from) {
   PrismCrossing prism;
-  if (!(tmin < tmax) || !crossesPrism(sub, o, d, tmin, tmax, prism)) return false;
+  if (!(tmin < tmax) || leavesRegion(sub, d, from) || !crossesPrism(sub, o, d, tmin, tmax, prism))
+    return false;
   BezierHit hit;
-  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, from, prism, hit)) {
+  switch (solveSubPatch(piece, sub, o, d, tmin, tmax, prism, hit)) {
     case Solved::Hit:
     case Solved::Candidate:
       return true;
