@@ -224,8 +224,7 @@ inline bool leavesRegion(const BezierSubPatch& sub, const Vec3& d, const Vec2* f
 // region never gets here: leavesRegion.)
 [[gnu::noinline]] Solved solveSubPatch(const BezierTriangle& piece, const BezierSubPatch& sub,
                                        const Vec3& o, const Vec3& d, double tmin, double tmax,
-                                       const PrismCrossing& prism,
-                                       BezierHit& hit) {
+                                       const PrismCrossing& prism, BezierHit& hit) {
   const auto [ho, hd, a1, b1, a2, b2] = prism;
   const bool injective = certifies(sub, d);
   double cu[3], cv[3];
