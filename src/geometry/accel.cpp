@@ -173,17 +173,20 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
   RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   impl_->check("creating a triangle geometry");
   // The entry check for any caller's mesh, made while copying (no second pass over a mesh the
-  // loader has validated already): what Embree reads must be finite as float and in range.
+  // loader has validated already): what Embree reads must be finite and within the range it
+  // traces.
   constexpr const char* kWhat = "triangles for the acceleration structure";
   for (size_t i = 0; i < mesh.positions.size(); ++i)
     for (int c = 0; c < 3; ++c) {
-      const float x = float(mesh.positions[i][c]);
-      if (!std::isfinite(x)) {
+      const double x = mesh.positions[i][c];
+      if (!(std::abs(x) <= kLargestCoordinate)) {
         rtcReleaseGeometry(geom);
-        fail("{}: vertex {} has a coordinate that is not a finite float ({})", kWhat, i,
-             mesh.positions[i][c]);
+        fail(
+            "{}: vertex {} has a coordinate of {}: expected a finite number within ±{:g}, the "
+            "largest Embree traces",
+            kWhat, i, x, kLargestCoordinate);
       }
-      vertices[3 * i + c] = x;
+      vertices[3 * i + c] = float(x);
     }
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
     for (int c = 0; c < 3; ++c) {
@@ -224,7 +227,9 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
       [&](const tbb::blocked_range<size_t>& range, Scan s) {
         for (size_t i = range.begin(); i != range.end() && i < s.firstBad; ++i) {
           const Bounds3& b = patches[i].bounds;
-          if (b.empty() || !allFinite(b.lo) || !allFinite(b.hi)) {
+          if (b.empty() || !(b.lo.cwiseAbs().maxCoeff() <= kLargestCoordinate) ||
+              !(b.hi.cwiseAbs().maxCoeff() <= kLargestCoordinate) || !allFinite(b.lo) ||
+              !allFinite(b.hi)) {
             s.firstBad = i, s.badBounds = true;
             break;
           }
@@ -246,7 +251,10 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
         return a;
       });
   if (scan.firstBad != SIZE_MAX && scan.badBounds)
-    fail("quadric patch {}: its bounds are empty or not finite", scan.firstBad);
+    fail(
+        "quadric patch {}: its bounds are empty, not finite or beyond ±{:g} (the largest "
+        "coordinate Embree traces)",
+        scan.firstBad, kLargestCoordinate);
   if (scan.firstBad != SIZE_MAX)
     fail("quadric patch {}: a bridge must join two patches of the same geometry, not {}",
          scan.firstBad, scan.badSide);
@@ -284,8 +292,9 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
       tbb::blocked_range<size_t>(0, pieces.size(), 4096), Scan(),
       [&](const tbb::blocked_range<size_t>& range, Scan s) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
-          if (!std::all_of(pieces[i].b.begin(), pieces[i].b.end(),
-                           [](const Vec3& p) { return allFinite(p); })) {
+          if (!std::all_of(pieces[i].b.begin(), pieces[i].b.end(), [](const Vec3& p) {
+                return p.cwiseAbs().maxCoeff() <= kLargestCoordinate && allFinite(p);
+              })) {
             s.firstNonFinite = std::min(s.firstNonFinite, i);
             continue;
           }
@@ -300,7 +309,10 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
         return a;
       });
   if (scan.firstNonFinite != SIZE_MAX)
-    fail("Bézier piece {}: a control point is not finite", scan.firstNonFinite);
+    fail(
+        "Bézier piece {}: a control point is not finite or beyond ±{:g} (the largest coordinate "
+        "Embree traces)",
+        scan.firstNonFinite, kLargestCoordinate);
   const double extent = scan.extent;
   auto user = std::make_unique<accel_detail::BezierGeometry>();
   user->pieces = &pieces;

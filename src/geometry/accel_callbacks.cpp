@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "quadtri/math/error.h"
 #include "quadtri/math/float_round.h"
 #include "quadtri/math/parallel.h"
 
@@ -253,6 +254,19 @@ void occludedBezier(const RTCOccludedFunctionNArguments* args) {
 }
 
 void fillRay(const Ray& ray, RTCRay& out) {
+  // Comparisons that a NaN fails as well.
+  const auto inRange = [](const Vec3& v) {
+    return std::abs(v.x()) <= Accel::kLargestCoordinate &&
+           std::abs(v.y()) <= Accel::kLargestCoordinate &&
+           std::abs(v.z()) <= Accel::kLargestCoordinate;
+  };
+  if (!inRange(ray.origin) || !inRange(ray.direction) || std::isnan(ray.tnear) ||
+      std::isnan(ray.tfar))
+    fail(
+        "ray from ({}, {}, {}) along ({}, {}, {}), t in [{}, {}]: a coordinate beyond ±{:g} (the "
+        "largest Embree traces) or not a number",
+        ray.origin.x(), ray.origin.y(), ray.origin.z(), ray.direction.x(), ray.direction.y(),
+        ray.direction.z(), ray.tnear, ray.tfar, Accel::kLargestCoordinate);
   out.org_x = float(ray.origin.x());
   out.org_y = float(ray.origin.y());
   out.org_z = float(ray.origin.z());

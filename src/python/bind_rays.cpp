@@ -81,9 +81,15 @@ Rays raysOf(py::handle origins, py::handle directions, double tnear, double tfar
   r.count = r.oneOrigin ? nd : no;
   if (r.oneOrigin && r.oneDirection) r.count = 1;
   for (const auto& [name, a] : {std::pair{"origins", &r.origins}, {"directions", &r.directions}})
-    for (py::ssize_t i = 0; i < a->size(); ++i)
+    for (py::ssize_t i = 0; i < a->size(); ++i) {
       if (!std::isfinite(a->data()[i]))
         throw py::value_error(fmt::format("{}: row {} is not finite", name, i / 3));
+      if (!(std::abs(a->data()[i]) <= Accel::kLargestCoordinate))
+        throw py::value_error(
+            fmt::format("{}: row {} has a coordinate of {}: expected one within ±{:g}, the largest "
+                        "Embree traces",
+                        name, i / 3, a->data()[i], Accel::kLargestCoordinate));
+    }
   if (!(tnear >= 0.0) || !(tfar >= tnear))
     throw py::value_error(
         fmt::format("tnear = {}, tfar = {}: expected 0 <= tnear <= tfar", tnear, tfar));
@@ -92,12 +98,12 @@ Rays raysOf(py::handle origins, py::handle directions, double tnear, double tfar
   return r;
 }
 
-// Runs f(range) over slices of [0, count) in parallel, without the GIL, on threads in Embree's
-// float mode.
+// Runs f(range) over slices of [0, count) in parallel (at least `grain` at a time), without the
+// GIL, on threads in Embree's float mode.
 template <typename F>
-void forEachSlice(size_t count, F f) {
+void forEachSlice(size_t count, F f, size_t grain = 256) {
   LibraryCall call;
-  parallelForRange(tbb::blocked_range<size_t>(0, count, 256),
+  parallelForRange(tbb::blocked_range<size_t>(0, count, grain),
                    [&](const tbb::blocked_range<size_t>& range) {
                      const FlushToZeroScope flushToZero;
                      f(range.begin(), range.end());
@@ -114,19 +120,28 @@ void forEachRay(size_t count, F f) {
 
 // Runs f(i, hit) with every ray's nearest hit, as forEachSlice does; the rays are traced
 // Accel::kPacketSize at a time (RenderScene::intersect of a span: Embree's packets, which
-// coherent rays such as a camera's share, and every ray's hit is the one it gets alone).
+// coherent rays such as a camera's share). The packets are rays 16j to 16j + 15 whatever the
+// threads: where a ray hits two triangles at exactly the same t, Embree's packet kernel may
+// settle the tie by the other rays of its packet, so packets that began wherever a thread's
+// slice began would make such hits depend on the threads.
 template <typename F>
 void forEachHit(const RenderScene& scene, const Rays& rays, F f) {
-  forEachSlice(rays.count, [&](size_t begin, size_t end) {
-    std::array<Ray, Accel::kPacketSize> batch;
-    std::array<std::optional<SurfaceInteraction>, Accel::kPacketSize> hits;
-    for (size_t first = begin; first < end; first += batch.size()) {
-      const size_t n = std::min(batch.size(), end - first);
-      for (size_t k = 0; k < n; ++k) batch[k] = rays.ray(first + k);
-      scene.intersect(std::span<const Ray>(batch).first(n), std::span(hits).first(n));
-      for (size_t k = 0; k < n; ++k) f(first + k, hits[k]);
-    }
-  });
+  constexpr size_t kLanes = Accel::kPacketSize;
+  const size_t packets = (rays.count + kLanes - 1) / kLanes;
+  forEachSlice(
+      packets,
+      [&](size_t begin, size_t end) {
+        std::array<Ray, kLanes> batch;
+        std::array<std::optional<SurfaceInteraction>, kLanes> hits;
+        for (size_t packet = begin; packet < end; ++packet) {
+          const size_t first = packet * kLanes;
+          const size_t n = std::min(kLanes, rays.count - first);
+          for (size_t k = 0; k < n; ++k) batch[k] = rays.ray(first + k);
+          scene.intersect(std::span<const Ray>(batch).first(n), std::span(hits).first(n));
+          for (size_t k = 0; k < n; ++k) f(first + k, hits[k]);
+        }
+      },
+      16);
 }
 
 }  // namespace

@@ -353,10 +353,20 @@ TEST(Accel, PacketsHitAsSingleRaysDo) {
   patchesOnly.intersect(rays, hits);
   int valid = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
-    const RayHit one = patchesOnly.intersect(rays[i]);
-    ASSERT_EQ(hits[i].geometry, one.geometry) << "ray " << i;
-    EXPECT_EQ(hits[i].t, one.t) << "ray " << i;
-    valid += one.valid();
+    // Against the nearest root over every patch, found without Embree.
+    double nearest = kInfinity;
+    size_t which = 0;
+    for (size_t k = 0; k < patches.size(); ++k) {
+      double t;
+      if (intersectPrimitive(patches, k, rays[i].origin, rays[i].direction, rays[i].tnear, nearest,
+                             t))
+        nearest = t, which = k;
+    }
+    ASSERT_EQ(hits[i].valid(), nearest < kInfinity) << "ray " << i;
+    if (!hits[i].valid()) continue;
+    EXPECT_EQ(hits[i].primitive, which) << "ray " << i;
+    EXPECT_EQ(hits[i].t, nearest) << "ray " << i;
+    valid += 1;
   }
   EXPECT_GT(valid, 30);
 }
@@ -449,6 +459,16 @@ TEST(Accel, MisuseIsAnError) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("vertex 1"), std::string::npos) << e.what();
   }
+  // So is one that is a float but beyond the ±1.8e18 Embree traces (it would drop the triangle
+  // from its tree without a word).
+  mesh.positions[1].x() = -2e18;
+  try {
+    accel.addTriangles(mesh);
+    ADD_FAILURE() << "a vertex at -2e18 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 1 has a coordinate of -2e+18"), std::string::npos)
+        << e.what();
+  }
   mesh.positions[1].x() = 1.0;
   accel.addTriangles(mesh);
   EXPECT_THROW(accel.intersect({Vec3(0.2, 0.2, -1), Vec3(0, 0, 1)}), Error);  // not committed
@@ -477,7 +497,13 @@ TEST(Accel, MisuseIsAnError) {
             std::string::npos)
       << message();
   many[17000].joins = {-1, -1};
-  EXPECT_NE(message().find("quadric patch 21000: its bounds are empty or not finite"),
+  EXPECT_NE(message().find("quadric patch 21000: its bounds are empty, not finite or beyond"),
+            std::string::npos)
+      << message();
+  // Finite, but beyond what Embree traces: it would drop the patch from its tree unsaid.
+  many[21000].bounds = many[0].bounds;
+  many[23000].bounds.hi.z() = 2e18;
+  EXPECT_NE(message().find("quadric patch 23000: its bounds are empty, not finite or beyond"),
             std::string::npos)
       << message();
   accel.commit();
@@ -487,6 +513,51 @@ TEST(Accel, MisuseIsAnError) {
   const Bounds3 b = accel.bounds();
   EXPECT_EQ(b.lo, Vec3(0, 0, 0));
   EXPECT_EQ(b.hi, Vec3(1, 1, 0));
+}
+
+TEST(Accel, RaysEmbreeCannotTraceAreAnErrorNotAnAbort) {
+  // Embree's Debian build asserts that a ray's origin and direction lie within ±1.844e18 and
+  // that tnear and tfar are numbers: such a ray aborted the process (a camera placed at 1e19,
+  // a Python caller's ray from 1e30). Every path that traces refuses it by name instead.
+  TriangleMesh floor;
+  floor.positions = {Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(1, 0, 1), Vec3(-1, 0, 1)};
+  floor.triangles = {{0, 2, 1}, {0, 3, 2}};
+  const std::vector<QuadricPatch> patches = spherePatches();
+  Accel accel;
+  accel.addTriangles(floor);
+  accel.addQuadricPatches(patches);
+  accel.commit();
+  const Ray fine{Vec3(0.1, 1e17, 0.2), Vec3(0, -1, 0)};
+  EXPECT_TRUE(accel.intersect(fine).valid());
+  std::vector<Ray> bad(5, fine);
+  bad[0].origin.y() = 1e19;
+  bad[1].direction.x() = -3e18;
+  bad[2].origin.z() = std::nan("");
+  bad[3].tnear = std::nan("");
+  bad[4].tfar = std::nan("");
+  for (size_t i = 0; i < bad.size(); ++i) {
+    const auto expectRefused = [&](const auto& trace, const char* how) {
+      try {
+        trace();
+        ADD_FAILURE() << how << " traced bad ray " << i;
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("the largest Embree traces"), std::string::npos)
+            << how << ": " << e.what();
+      }
+    };
+    expectRefused([&] { accel.intersect(bad[i]); }, "intersect");
+    expectRefused([&] { accel.occluded(bad[i]); }, "occluded");
+    // In the middle of a packet, among good rays.
+    std::vector<Ray> packet(Accel::kPacketSize, fine);
+    packet[7] = bad[i];
+    std::vector<RayHit> hits(packet.size());
+    expectRefused([&] { accel.intersect(packet, hits); }, "a packet");
+  }
+  // The accel still traces after refusing.
+  std::vector<Ray> packet(Accel::kPacketSize, fine);
+  std::vector<RayHit> hits(packet.size());
+  accel.intersect(packet, hits);
+  for (const RayHit& hit : hits) EXPECT_EQ(hit.t, accel.intersect(fine).t);
 }
 
 }  // namespace

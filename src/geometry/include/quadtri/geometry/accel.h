@@ -69,6 +69,13 @@ class Accel {
   uint32_t addBezierTriangles(const std::vector<BezierTriangle>& pieces);
   void commit();
 
+  /// The largest coordinate Embree traces: its FLT_LARGE (1.844e18) rounded down. Beyond it
+  /// Embree drops a primitive from its tree without a word and aborts on a ray (its Debian
+  /// build asserts), so every vertex, bound and control point added, and every ray traced
+  /// (origin and direction components; tnear and tfar must not be NaN), is checked against it:
+  /// Error names what is out of range.
+  static constexpr double kLargestCoordinate = 1.8e18;
+
   /// Whether intersect fills RayHit::geometricNormal for triangle and quadric-patch hits. A caller
   /// that derives its own normal from the hit in double precision (RenderScene) skips it; a
   /// Bézier piece's normal comes with its point and is always filled.

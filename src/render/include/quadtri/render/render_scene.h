@@ -86,6 +86,9 @@ class RenderScene {
   std::optional<SurfaceInteraction> intersect(const Ray& ray) const;
   /// intersect(rays[i]) for every ray, into out[i]: the rays are traced together in packets
   /// (Accel::intersect of several rays), which coherent rays (a pixel's camera rays) share.
+  /// Where a ray hits two triangles at exactly the same t, the one it gets may depend on the
+  /// other rays of its packet (Accel::intersect): callers that want results independent of
+  /// threads keep the same rays together.
   void intersect(std::span<const Ray> rays, std::span<std::optional<SurfaceInteraction>> out) const;
   bool occluded(const Ray& ray) const { return accel_.occluded(ray); }
   /// A ray leaving `si` along unit `direction`, its origin pushed by si.offset along the
