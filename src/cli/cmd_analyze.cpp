@@ -31,9 +31,11 @@ Action addAnalyzeCommand(CLI::App& app) {
   sub->add_flag("--json", opt->json, "Print one JSON object instead of a table");
   sub->add_flag("--csv", opt->csv, "Print CSV: a header of the JSON keys, one row per model");
   sub->add_option("--lines", opt->analysis.crack.lines, "Random lines for the crack rate")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(wholeNumber());
   sub->add_option("--seed", opt->analysis.crack.seed, "Seed of the crack-rate lines")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(wholeNumber());
   sub->add_option("--tessellation", opt->tessellation,
                   "Lattice level N, 'thesis' (50x50 grid), or 'auto[:TOLERANCE]' (as convert)")
       ->capture_default_str();

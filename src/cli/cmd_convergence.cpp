@@ -57,15 +57,18 @@ Action addConvergenceCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-triangles", opt->maxTriangles,
                   "Stop refining a shape at the first level with more triangles (0: no limit)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(wholeNumber());
   sub->add_option("--truth-level", opt->truthLevel, "Sample lattice level per patch")
       ->capture_default_str();
   addNormalFlags(sub, opt->normals,
                  "Vertex normals: file (the shape's analytic ones), average (thesis eq. 2.8) "
                  "or angle (angle-weighted, split at --crease-angle)");
-  sub->add_option("-o,--output", opt->plot, "PNG: truth_distance against triangles, log-log");
-  sub->add_option("--csv", opt->csv, "CSV of every sample");
-  sub->add_option("--orders-csv", opt->ordersCsv, "CSV of the observed orders");
+  sub->add_option("-o,--output", opt->plot, "PNG: truth_distance against triangles, log-log")
+      ->check(outputFile());
+  sub->add_option("--csv", opt->csv, "CSV of every sample")->check(outputFile());
+  sub->add_option("--orders-csv", opt->ordersCsv, "CSV of the observed orders")
+      ->check(outputFile());
   sub->add_flag("-q,--quiet", opt->quiet, "No progress lines on stderr");
   return [opt]() {
     // A shape's arguments are commas too: a piece that starts like a number continues the

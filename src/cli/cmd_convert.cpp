@@ -32,7 +32,8 @@ Action addConvertCommand(CLI::App& app) {
   sub->add_option("--model", opt->model, "Model")->required()->check(CLI::IsMember(modelNames()));
   sub->add_option("-o,--output", opt->output,
                   "Output file: .obj, .ply (tessellated), .json or .qtp (patches)")
-      ->required();
+      ->required()
+      ->check(outputFile());
   sub->add_option("--tessellation", opt->tessellation,
                   "Lattice level N (N² triangles per patch), 'thesis' (50x50 grid, 4802 "
                   "triangles per patch), or 'auto[:TOLERANCE]': the lowest level up to 8 whose "

@@ -39,11 +39,13 @@ Action addFigureCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--scenes", opt->scenes, "Folder of the scene files")->capture_default_str();
   sub->add_option("-o,--output", opt->output,
-                  "Grid image (.png); required unless --shard only renders cells");
-  sub->add_option("--csv", opt->csv, "Render time per cell, as CSV");
+                  "Grid image (.png); required unless --shard only renders cells")
+      ->check(outputFile());
+  sub->add_option("--csv", opt->csv, "Render time per cell, as CSV")->check(outputFile());
   sub->add_option("--ratio-plot", opt->ratioPlot,
                   "PNG plot of the render-time ratio of the last model over each other model "
-                  "against its primitive count (thesis fig. 5.5)");
+                  "against its primitive count (thesis fig. 5.5)")
+      ->check(outputFile());
   sub->add_option("--res", opt->res, "Image side in pixels (sets $res)");
   opt->flags.add(sub, kSppFlag | kDefineFlag | kThreadsFlag | kSeedFlag | kTimeFlag);
   addNormalFlags(sub, opt->normals,

@@ -28,7 +28,8 @@ Action addMergeCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("-o,--output", opt->output,
                   "Assembled image (.exr, or .png), or the joined study (.csv)")
-      ->required();
+      ->required()
+      ->check(outputFile());
   sub->add_flag("--allow-unfinished", opt->allowUnfinished,
                 "Merge tiles that --time or a signal cut short, their unfinished pixels black "
                 "(refused otherwise)");

@@ -21,7 +21,9 @@ Action addMeshCommand(CLI::App& app) {
   sub->add_option("name", opt->name, "Shape")
       ->required()
       ->check(CLI::IsMember(builtinShapeNames()));
-  sub->add_option("-o,--output", opt->output, "Output file (.obj or .ply)")->required();
+  sub->add_option("-o,--output", opt->output, "Output file (.obj or .ply)")
+      ->required()
+      ->check(outputFile());
   sub->add_option("--level", opt->params.level, "Icosphere/ellipsoid subdivision level")
       ->capture_default_str();
   sub->add_option("--segments", opt->params.segments,

@@ -53,7 +53,8 @@ Action addRenderCommand(CLI::App& app) {
       "render", "Render a Mitsuba 3 XML scene to EXR (linear) and/or PNG (sRGB)");
   sub->add_option("scene", opt->scene, "Scene file (.xml)")->required()->check(CLI::ExistingFile);
   sub->add_option("-o,--output", opt->outputs, "Output image, .exr or .png (may be given twice)")
-      ->required();
+      ->required()
+      ->check(outputFile());
   opt->flags.add(sub, kModelFlag | kDefineFlag | kSppFlag | kThreadsFlag | kTimeFlag | kSeedFlag);
   addNormalFlags(sub, opt->normals,
                  "Shading normals of every obj/ply shape, overriding the scene's: file (as "

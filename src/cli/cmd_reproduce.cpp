@@ -35,7 +35,8 @@ Action addReproduceCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--lines", opt->reproduce.lines,
                   "Random lines per crack rate of the every-model measurements")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(wholeNumber());
   sub->add_option("--levels", opt->reproduce.levels,
                   "Refinement levels 0..L of the convergence study")
       ->capture_default_str();

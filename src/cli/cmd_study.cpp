@@ -39,7 +39,8 @@ Action addStudyCommand(CLI::App& app) {
   opt->flags.add(sub, kModelListFlag | kSeedFlag | kThreadsFlag,
                  "Seed of the crack-rate lines (default 1)");
   sub->add_option("--lines", opt->analysis.crack.lines, "Random lines per crack rate")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(wholeNumber());
   addNormalFlags(sub, opt->normals,
                  "Vertex normals: file (as given; angle-weighted and split at --crease-angle when "
                  "missing), average (thesis eq. 2.8) or angle (angle-weighted, split at "

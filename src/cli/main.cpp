@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <vector>
 
 #include "commands.h"
@@ -32,12 +33,20 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help prints and succeeds; anything else is a mistake in the command line, reported as
+    // every other error is (CLI11's own exit codes, 100 and up, read like crashes to a script).
+    if (e.get_exit_code() == int(CLI::ExitCodes::Success)) return app.exit(e);
+    std::fprintf(stderr, "quadtri: error: %s\nRun with --help for more information.\n", e.what());
+    return 1;
   }
   try {
     for (auto& [sub, action] : commands)
       if (sub->parsed()) return action();
   } catch (const quadtri::Error& e) {
+    std::fprintf(stderr, "quadtri: error: %s\n", e.what());
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A folder that cannot be made or a file that cannot be opened: the system's words name it.
     std::fprintf(stderr, "quadtri: error: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 #include "render_flags.h"
 
+#include "commands.h"
 #include "quadtri/math/error.h"
 
 namespace quadtri::cli {
@@ -24,7 +25,8 @@ void RenderFlags::add(CLI::App* sub, unsigned which, const std::string& seedHelp
         "--time", time_, "Time budget in seconds per render; unfinished pixels stay black");
   if (which & kSeedFlag)
     sub->add_option("--seed", seed_,
-                    seedHelp.empty() ? "Sampler seed (overrides the sampler)" : seedHelp);
+                    seedHelp.empty() ? "Sampler seed (overrides the sampler)" : seedHelp)
+        ->check(wholeNumber());
 }
 
 RenderSettings RenderFlags::settings() const {

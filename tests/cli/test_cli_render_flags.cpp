@@ -3,6 +3,7 @@
 // `render --spp` does.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 
 #include "cli/cli_runner.h"
@@ -56,6 +57,60 @@ TEST(CliRenderFlags, EveryCommandSaysTheSameAboutTheSameMistake) {
             "--time 0: expected a positive number of seconds");
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(png));
+  fs::remove_all(dir);
+}
+
+TEST(CliRenderFlags, MistakesAreRefusedBeforeAnyWorkInOneVoice) {
+  const fs::path dir = freshDir("render-mistakes");
+  const std::string scene = kScenes + "/a-triangle.xml";
+  const std::string out = (dir / "x.exr").string();
+  // A sign on an unsigned option: CLI11 alone read "-5" as 2^64 - 5 (--lines ran for minutes,
+  // --seed -1 rendered with seed 18446744073709551615).
+  EXPECT_EQ(errorOf({"analyze", "icosphere", "--lines", "-5"}, dir, "a1"),
+            "--lines: expected a whole number, 0 or more, got -5");
+  EXPECT_EQ(errorOf({"render", scene, "-o", out, "--seed", "-1"}, dir, "r1"),
+            "--seed: expected a whole number, 0 or more, got -1");
+  EXPECT_FALSE(fs::exists(out));
+  // An output in a folder that does not exist is refused when parsed, not after the render.
+  const std::string lost = (dir / "nodir" / "x.exr").string();
+  const auto started = std::chrono::steady_clock::now();
+  EXPECT_EQ(errorOf({"render", scene, "-o", lost, "-D", "res=512", "--spp", "4096"}, dir, "r2"),
+            "--output: " + lost + ": the folder " + (dir / "nodir").string() + " does not exist");
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(20));
+  EXPECT_EQ(errorOf({"convergence", "--shapes", "icosphere", "--csv", lost}, dir, "c1"),
+            "--csv: " + lost + ": the folder " + (dir / "nodir").string() + " does not exist");
+  // The parser's own complaints read as every other error does, with exit status 1.
+  EXPECT_EQ(errorOf({"mesh", "icosphere:3", "-o", (dir / "m.obj").string()}, dir, "m1")
+                .rfind("name: icosphere:3 not in {", 0),
+            0u);
+  EXPECT_EQ(errorOf({"frobnicate"}, dir, "x1"), "A subcommand is required");
+  fs::remove_all(dir);
+}
+
+TEST(CliRenderFlags, SceneErrorsNameTheElementNotItsParameters) {
+  // A mesh the loader refuses, inside a scene: the message is the scene's line, the element's
+  // tag and the loader's words, without the element's resolved parameters (its matrices, paths
+  // and defaults ran to several lines before).
+  const fs::path dir = freshDir("scene-errors");
+  {
+    std::ofstream obj(dir / "bad.obj");
+    obj << "v 0 0 0\nv 1 0 0\nf 1 2 3\n";
+    std::ofstream xml(dir / "scene.xml");
+    xml << "<scene version=\"3.0.0\">\n"
+           "  <sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n"
+           "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/>"
+           "<integer name=\"height\" value=\"8\"/></film></sensor>\n"
+           "  <shape type=\"obj\"><string name=\"filename\" value=\"bad.obj\"/></shape>\n"
+           "</scene>\n";
+  }
+  const std::string message =
+      errorOf({"render", (dir / "scene.xml").string(), "-o", (dir / "x.exr").string()}, dir, "s1");
+  EXPECT_EQ(message.rfind((dir / "scene.xml").string() + ":4: <shape type=\"obj\">: " +
+                              (dir / "bad.obj").string() + ":3: face vertex '3'",
+                          0),
+            0u)
+      << message;
+  EXPECT_EQ(message.find("to_world"), std::string::npos) << message;
   fs::remove_all(dir);
 }
 
