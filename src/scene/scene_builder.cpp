@@ -18,6 +18,13 @@ auto at(const std::string& location, const std::string& what, F&& build) {
   }
 }
 
+// An element as an error names it: its tag, type and id. Its parameters are at its line of the
+// scene file; spelled out (matrices, resolved paths, defaults) they buried the message.
+std::string tagOf(std::string_view element, const std::string& type, const std::string& id = {}) {
+  return id.empty() ? fmt::format("<{} type=\"{}\">", element, type)
+                    : fmt::format("<{} type=\"{}\" id=\"{}\">", element, type, id);
+}
+
 }  // namespace
 
 BuiltScene buildScene(const SceneDescription& description,
@@ -43,7 +50,7 @@ BuiltScene buildScene(const SceneDescription& description,
   camera.cropWidth = sensor.film.cropWidth;
   camera.cropHeight = sensor.film.cropHeight;
   camera.principalPointOffset = sensor.principalPointOffset;
-  at(sensor.location, toString(sensor), [&] {
+  at(sensor.location, "<sensor type=\"perspective\">", [&] {
     const PerspectiveCamera film(camera);  // its width and height are the crop window's
     chargeMemory(budget, renderImageBytes(film.width(), film.height()), "the film",
                  fmt::format("a {}x{} image", film.width(), film.height()));
@@ -57,26 +64,27 @@ BuiltScene buildScene(const SceneDescription& description,
                                                           : ReconstructionFilter::Kind::Gaussian;
   built.options.filter.tentRadius = sensor.film.filter.radius;
   built.options.filter.stddev = sensor.film.filter.stddev;
-  built.integrator = at(description.integrator.location, toString(description.integrator), [&] {
-    if (!description.integrator.params) fail("no integrator parameters");
-    return description.integrator.params->build(sensor.sampler.sampleCount);
+  const IntegratorDesc& integrator = description.integrator;
+  built.integrator = at(integrator.location, tagOf("integrator", integrator.type), [&] {
+    if (!integrator.params) fail("no integrator parameters");
+    return integrator.params->build(sensor.sampler.sampleCount);
   });
 
   std::vector<std::shared_ptr<const Bsdf>> bsdfs;
   for (const BsdfDesc& d : description.bsdfs)
-    bsdfs.push_back(at(d.location, toString(d), [&] {
+    bsdfs.push_back(at(d.location, tagOf("bsdf", d.type, d.id), [&] {
       if (!d.params) fail("no BSDF parameters");
       return d.params->build(bsdfs);
     }));
 
   for (const EmitterDesc& e : description.emitters)
-    at(e.location, toString(e), [&] {
+    at(e.location, tagOf("emitter", e.type), [&] {
       if (!e.params) fail("no emitter parameters");
       e.params->addTo(scene);
     });
 
   for (const ShapeDesc& s : description.shapes) {
-    const std::string what = toString(s);
+    const std::string what = tagOf("shape", s.type, s.id);
     at(s.location, what, [&] {
       if (s.bsdf >= bsdfs.size()) fail("BSDF index {} out of range", s.bsdf);
       if (!s.params) fail("no shape parameters");
