@@ -73,11 +73,14 @@ Action addConvertCommand(CLI::App& app) {
       chargeResolvedTessellation(budget, opt->model, requested, tessellation, use,
                                  mesh->triangleCount(), opt->mesh);
     const size_t written = writeConversion(*model, tessellation, opt->output);
+    // The models that keep the input triangles write them as they are: no lattice to name.
+    const bool lattice = model->representation() != Representation::InputTriangles;
     const std::string what =
-        written > 0 ? fmt::format("{} triangles, tessellation {}{}", written,
-                                  tessellationName(tessellation),
-                                  requested.kind == Tessellation::Kind::Adaptive ? " (auto)" : "")
-                    : fmt::format("{} patches", model->patchCount());
+        written == 0 ? fmt::format("{} patches", model->patchCount())
+        : lattice    ? fmt::format("{} triangles, tessellation {}{}", written,
+                                   tessellationName(tessellation),
+                                requested.kind == Tessellation::Kind::Adaptive ? " (auto)" : "")
+                     : fmt::format("{} triangles", written);
     fmt::print("{}: {} model of {} ({} input triangles -> {}; converted in {:.3f} s)\n",
                opt->output, opt->model, input.description, mesh->triangleCount(), what, seconds);
     return 0;
