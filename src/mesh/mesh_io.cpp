@@ -228,6 +228,16 @@ TriangleMesh loadWithAssimp(const std::string& name, const std::string& ext,
   const aiScene* scene = importer.ReadFile(name, 0);
   if (!scene || !scene->mRootNode)
     fail("{}: cannot read mesh ({})", name, importer.GetErrorString());
+  // A file of points alone (a scan's point cloud): say so, rather than what Assimp's
+  // post-processing says once it has dropped them ("all meshes are orphaned").
+  size_t faces = 0, vertices = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    faces += scene->mMeshes[m]->mNumFaces;
+    vertices += scene->mMeshes[m]->mNumVertices;
+  }
+  if (faces == 0)
+    fail("{}: no faces: {} vertices and no triangle to build a surface from (a point cloud?)", name,
+         vertices);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* am = scene->mMeshes[m];
     for (unsigned f = 0; f < am->mNumFaces; ++f) {

@@ -209,6 +209,23 @@ TEST_F(MeshRepair, AnObjWithoutFacesSaysSo) {
   }
 }
 
+TEST_F(MeshRepair, APlyWithoutFacesSaysSo) {
+  // A point cloud, as the corpus' b9.ply (an empty face element): read by Assimp, whose
+  // post-processing drops the points and then says "all meshes are orphaned".
+  const auto p = write("points.ply",
+                       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                       "property float y\nproperty float z\nelement face 0\n"
+                       "property list uchar int vertex_indices\nend_header\n"
+                       "0 0 0\n1 0 0\n0 1 0\n");
+  try {
+    loadMesh(p);
+    FAIL() << "loaded a mesh without faces";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("points.ply: no faces: 3 vertices"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(MeshRepair, NonFiniteCoordinatesAreAnErrorNamingTheVertex) {
   TriangleMesh mesh;
   mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, std::nan(""), 0)};
