@@ -39,13 +39,11 @@ Action addFigureCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--scenes", opt->scenes, "Folder of the scene files")->capture_default_str();
   sub->add_option("-o,--output", opt->output,
-                  "Grid image (.png); required unless --shard only renders cells")
-      ->check(outputFile());
-  sub->add_option("--csv", opt->csv, "Render time per cell, as CSV")->check(outputFile());
+                  "Grid image (.png); required unless --shard only renders cells");
+  sub->add_option("--csv", opt->csv, "Render time per cell, as CSV");
   sub->add_option("--ratio-plot", opt->ratioPlot,
                   "PNG plot of the render-time ratio of the last model over each other model "
-                  "against its primitive count (thesis fig. 5.5)")
-      ->check(outputFile());
+                  "against its primitive count (thesis fig. 5.5)");
   sub->add_option("--res", opt->res, "Image side in pixels (sets $res)");
   opt->flags.add(sub, kSppFlag | kDefineFlag | kThreadsFlag | kSeedFlag | kTimeFlag);
   addNormalFlags(sub, opt->normals,
@@ -88,6 +86,22 @@ Action addFigureCommand(CLI::App& app) {
           "with --from once every shard is done (drop -o, --csv and --ratio-plot here)",
           opt->shard);
     if (composes && opt->output.empty()) fail("-o: the grid image (.png) is required");
+    // The outputs' folders must exist before the renders, or be made by --cells (which creates
+    // its folder and those above it before the grid is written).
+    for (const auto& [flag, file] :
+         {std::pair{"-o", &opt->output}, {"--csv", &opt->csv}, {"--ratio-plot", &opt->ratioPlot}}) {
+      if (file->empty()) continue;
+      const std::filesystem::path path(*file);
+      const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
+      if (std::filesystem::is_directory(folder)) continue;
+      bool madeByCells = false;
+      if (!opt->cells.empty()) {
+        const auto f = std::filesystem::absolute(folder).lexically_normal();
+        const auto c = std::filesystem::absolute(opt->cells).lexically_normal();
+        madeByCells = std::mismatch(f.begin(), f.end(), c.begin(), c.end()).first == f.end();
+      }
+      if (!madeByCells) fail("{} {}: the folder {} does not exist", flag, *file, folder.string());
+    }
     if (!opt->output.empty() && std::filesystem::path(opt->output).extension() != ".png")
       fail("-o {}: expected a .png file", opt->output);
     request.settings = opt->flags.settings();

@@ -67,8 +67,8 @@ Action addStudyCommand(CLI::App& app) {
       meshes = meshesInFolder(opt->source);
       from = fmt::format("folder {}", opt->source);
     } else {
-      // Not a folder: a manifest, which must then be a file.
-      if (!fs::is_regular_file(opt->source))
+      // Not a folder: a manifest, which must then exist (a file, or a pipe: <(...)).
+      if (!fs::exists(opt->source))
         fail("{}: neither a folder of meshes nor a manifest file", opt->source);
       std::string corpus = opt->corpus;
       if (corpus.empty()) {

@@ -256,9 +256,9 @@ void occludedBezier(const RTCOccludedFunctionNArguments* args) {
 void fillRay(const Ray& ray, RTCRay& out) {
   // Comparisons that a NaN fails as well.
   const auto inRange = [](const Vec3& v) {
-    return std::abs(v.x()) <= Accel::kLargestCoordinate &&
-           std::abs(v.y()) <= Accel::kLargestCoordinate &&
-           std::abs(v.z()) <= Accel::kLargestCoordinate;
+    return std::abs(v.x()) <= Accel::kLargestRayCoordinate &&
+           std::abs(v.y()) <= Accel::kLargestRayCoordinate &&
+           std::abs(v.z()) <= Accel::kLargestRayCoordinate;
   };
   if (!inRange(ray.origin) || !inRange(ray.direction) || std::isnan(ray.tnear) ||
       std::isnan(ray.tfar))
@@ -266,7 +266,7 @@ void fillRay(const Ray& ray, RTCRay& out) {
         "ray from ({}, {}, {}) along ({}, {}, {}), t in [{}, {}]: a coordinate beyond ±{:g} (the "
         "largest Embree traces) or not a number",
         ray.origin.x(), ray.origin.y(), ray.origin.z(), ray.direction.x(), ray.direction.y(),
-        ray.direction.z(), ray.tnear, ray.tfar, Accel::kLargestCoordinate);
+        ray.direction.z(), ray.tnear, ray.tfar, Accel::kLargestRayCoordinate);
   out.org_x = float(ray.origin.x());
   out.org_y = float(ray.origin.y());
   out.org_z = float(ray.origin.z());

@@ -84,11 +84,11 @@ Rays raysOf(py::handle origins, py::handle directions, double tnear, double tfar
     for (py::ssize_t i = 0; i < a->size(); ++i) {
       if (!std::isfinite(a->data()[i]))
         throw py::value_error(fmt::format("{}: row {} is not finite", name, i / 3));
-      if (!(std::abs(a->data()[i]) <= Accel::kLargestCoordinate))
+      if (!(std::abs(a->data()[i]) <= Accel::kLargestRayCoordinate))
         throw py::value_error(
             fmt::format("{}: row {} has a coordinate of {}: expected one within ±{:g}, the largest "
                         "Embree traces",
-                        name, i / 3, a->data()[i], Accel::kLargestCoordinate));
+                        name, i / 3, a->data()[i], Accel::kLargestRayCoordinate));
     }
   if (!(tnear >= 0.0) || !(tfar >= tnear))
     throw py::value_error(

@@ -66,17 +66,35 @@ TEST(CliRenderFlags, MistakesAreRefusedBeforeAnyWorkInOneVoice) {
   const std::string out = (dir / "x.exr").string();
   // A sign on an unsigned option: CLI11 alone read "-5" as 2^64 - 5 (--lines ran for minutes,
   // --seed -1 rendered with seed 18446744073709551615).
-  EXPECT_EQ(errorOf({"analyze", "icosphere", "--lines", "-5"}, dir, "a1"),
+  // (Each command fails fast if the check itself is lost: a mesh that does not exist, a tiny
+  // render, not 2^64 lines or a long render.)
+  const std::string missing = (dir / "missing.obj").string();
+  EXPECT_EQ(errorOf({"analyze", missing, "--lines", "-5"}, dir, "a1"),
             "--lines: expected a whole number, 0 or more, got -5");
-  EXPECT_EQ(errorOf({"render", scene, "-o", out, "--seed", "-1"}, dir, "r1"),
-            "--seed: expected a whole number, 0 or more, got -1");
+  EXPECT_EQ(
+      errorOf({"render", scene, "-o", out, "-D", "res=8", "--spp", "1", "--seed", "-1"}, dir, "r1"),
+      "--seed: expected a whole number, 0 or more, got -1");
   EXPECT_FALSE(fs::exists(out));
   // An output in a folder that does not exist is refused when parsed, not after the render.
   const std::string lost = (dir / "nodir" / "x.exr").string();
-  const auto started = std::chrono::steady_clock::now();
-  EXPECT_EQ(errorOf({"render", scene, "-o", lost, "-D", "res=512", "--spp", "4096"}, dir, "r2"),
+  // (A tiny render: were the check lost, it would fail at the write with other words.)
+  EXPECT_EQ(errorOf({"render", scene, "-o", lost, "-D", "res=8", "--spp", "1"}, dir, "r2"),
             "--output: " + lost + ": the folder " + (dir / "nodir").string() + " does not exist");
-  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(20));
+  // figure's outputs may lie in a folder that its --cells makes; otherwise the same refusal,
+  // before any render.
+  EXPECT_EQ(errorOf({"figure", "--scenes", kScenes, "--shapes", "triangle", "--models", "flat",
+                     "--res", "8", "--spp", "1", "-o", (dir / "nodir" / "f.png").string()},
+                    dir, "f1"),
+            "-o " + (dir / "nodir" / "f.png").string() + ": the folder " +
+                (dir / "nodir").string() + " does not exist");
+  {
+    CliProcess made({"figure", "--scenes", kScenes, "--shapes", "triangle", "--models", "flat",
+                     "--res", "8", "--spp", "1", "--cells", (dir / "new" / "cells").string(), "-o",
+                     (dir / "new" / "f.png").string()},
+                    dir, "f2");
+    EXPECT_EQ(made.wait(), 0) << made.stderrText();
+    EXPECT_TRUE(fs::exists(dir / "new" / "f.png"));
+  }
   EXPECT_EQ(errorOf({"convergence", "--shapes", "icosphere", "--csv", lost}, dir, "c1"),
             "--csv: " + lost + ": the folder " + (dir / "nodir").string() + " does not exist");
   // The parser's own complaints read as every other error does, with exit status 1.

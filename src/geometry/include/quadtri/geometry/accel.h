@@ -71,10 +71,13 @@ class Accel {
 
   /// The largest coordinate Embree traces: its FLT_LARGE (1.844e18) rounded down. Beyond it
   /// Embree drops a primitive from its tree without a word and aborts on a ray (its Debian
-  /// build asserts), so every vertex, bound and control point added, and every ray traced
-  /// (origin and direction components; tnear and tfar must not be NaN), is checked against it:
-  /// Error names what is out of range.
+  /// build asserts), so every vertex, bound and control point added is checked against it, and
+  /// every ray traced against kLargestRayCoordinate (origin and direction components; tnear
+  /// and tfar must not be NaN): Error names what is out of range.
   static constexpr double kLargestCoordinate = 1.8e18;
+  /// The bound on a ray's origin and direction: nearer Embree's, so that a ray spawned from a
+  /// surface at kLargestCoordinate (moved off it by about 2^-19 of its coordinate) is traced.
+  static constexpr double kLargestRayCoordinate = 1.84e18;
 
   /// Whether intersect fills RayHit::geometricNormal for triangle and quadric-patch hits. A caller
   /// that derives its own normal from the hit in double precision (RenderScene) skips it; a
