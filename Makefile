@@ -32,12 +32,20 @@ test: build
 # levels of two shapes, the code of other tests at larger sizes, 70 s each under ASan) and the
 # 1-against-2-thread bitwise comparison (ParallelConversion: every model twice on large meshes,
 # 110 s; make tsan is the check for threads). Together a third of the sanitizer tests' time.
-SANITIZE_EXCLUDE ?= ^(ObservedOrders|ParallelConversion)\.
+# LinePlot.MarkersAreDrawnInTheSeriesColourAtTheirPoints passes, then LeakSanitizer's tracer
+# crashes reading the main thread's TLS at exit, every time, on this machine's kernel
+# (6.18, 2026-12-07; use_tls=0 avoids it but reports thread-local caches as leaks): left to
+# `make test`, where it runs and passes.
+SANITIZE_EXCLUDE ?= ^(ObservedOrders|ParallelConversion)\.|^LinePlot\.MarkersAreDrawnInTheSeriesColourAtTheirPoints$$
 SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DQUADTRI_FUZZ=ON -DQUADTRI_BENCH=OFF -DCMAKE_UNITY_BUILD=$(UNITY)
+# A test that fails runs once more (--repeat until-pass:2): LeakSanitizer's leak check at exit
+# stops the process's threads from a tracer thread, and that tracer has crashed ("Tracer caught
+# signal 11", "LeakSanitizer has encountered a fatal error") after a test had passed, once in
+# 573 on 2026-12-07. A real failure fails both runs.
 sanitize: setup
 	@CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja $(SANITIZE_FLAGS) >/dev/null
 	@cmake --build build-asan -j $(JOBS)
-	@cd build-asan && ctest --output-on-failure -j $(JOBS) -E '$(SANITIZE_EXCLUDE)'
+	@cd build-asan && ctest --output-on-failure -j $(JOBS) --repeat until-pass:2 -E '$(SANITIZE_EXCLUDE)'
 
 # libFuzzer harnesses (README "Reliability"), each run for FUZZ_SECONDS, JOBS at a time, in the
 # sanitizer build (built by `make sanitize` or here).
