@@ -20,10 +20,8 @@ void furnaceScene(RenderScene& scene, int width, int height) {
   scene.commit();
 }
 
-TEST(Renderer, ImageDoesNotDependOnThreadCount) {
-  // The furnace's sphere on a floor of triangles, so that camera rays go through Embree's
-  // packets; the film not a multiple of the tile size.
-  RenderScene scene;
+// The furnace's sphere on a floor of triangles, so that camera rays go through Embree's packets.
+void sphereOnFloorScene(RenderScene& scene, int width, int height) {
   scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false, diffuse(0.8), std::nullopt, "sphere");
   TriangleMesh floor;
   floor.positions = {Vec3(-4, -1.2, -4), Vec3(4, -1.2, -4), Vec3(4, -1.2, 4), Vec3(-4, -1.2, 4)};
@@ -31,8 +29,15 @@ TEST(Renderer, ImageDoesNotDependOnThreadCount) {
   addMesh(scene, std::move(floor), "flat", diffuse(0.5));
   scene.addPointLight(Vec3(2, 3, 2), Color::Constant(10.0));
   scene.setEnvironment(Color::Constant(0.5));
-  scene.setCamera(makeCamera(Vec3(0, 0.3, 3.5), Vec3::Zero(), 45.0, 37, 21));
+  scene.setCamera(makeCamera(Vec3(0, 0.3, 3.5), Vec3::Zero(), 45.0, width, height));
   scene.commit();
+}
+
+TEST(Renderer, ImageDoesNotDependOnThreadCount) {
+  // The furnace's sphere on a floor of triangles, so that camera rays go through Embree's
+  // packets; the film not a multiple of the tile size.
+  RenderScene scene;
+  sphereOnFloorScene(scene, 37, 21);
   const PathIntegrator path({});
   RenderOptions options;
   options.samplesPerPixel = 4;
@@ -82,15 +87,7 @@ TEST(Renderer, SamplesDoNotDependOnHowCameraRaysArePacked) {
   // stop early but at a constant pixel) must give the same pixels to the bit. This fails if a
   // camera offset is drawn from the path's stream, or if a lane of a short packet is dropped.
   RenderScene scene;
-  scene.addSphere(Vec3::Zero(), 1.0, Mat4::Identity(), false, diffuse(0.8), std::nullopt, "sphere");
-  TriangleMesh floor;
-  floor.positions = {Vec3(-4, -1.2, -4), Vec3(4, -1.2, -4), Vec3(4, -1.2, 4), Vec3(-4, -1.2, 4)};
-  floor.triangles = {{0, 2, 1}, {0, 3, 2}};
-  addMesh(scene, std::move(floor), "flat", diffuse(0.5));
-  scene.addPointLight(Vec3(2, 3, 2), Color::Constant(10.0));
-  scene.setEnvironment(Color::Constant(0.5));
-  scene.setCamera(makeCamera(Vec3(0, 0.3, 3.5), Vec3::Zero(), 45.0, 23, 17));
-  scene.commit();
+  sphereOnFloorScene(scene, 23, 17);
   RenderOptions options;
   options.samplesPerPixel = 16;
   options.seed = 5;
