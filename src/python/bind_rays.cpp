@@ -1,5 +1,6 @@
 // RayScene: models in the renderer's Embree scene, intersected with many rays at once.
 #include <pybind11/stl.h>
+#include <tbb/task_arena.h>
 
 #include <array>
 #include <cmath>
@@ -98,22 +99,33 @@ Rays raysOf(py::handle origins, py::handle directions, double tnear, double tfar
   return r;
 }
 
-// Runs f(range) over slices of [0, count) in parallel (at least `grain` at a time), without the
-// GIL, on threads in Embree's float mode.
+// The `threads` argument of the tracing calls: 0 for every core TBB offers, else that many.
+int threadCount(int threads) {
+  if (threads < 0)
+    throw py::value_error(
+        fmt::format("threads = {}: expected 0 (every core) or a positive count", threads));
+  return threads;
+}
+
+// Runs f(range) over slices of [0, count) in parallel (at least `grain` at a time) on at most
+// `threads` threads (0: all), without the GIL, on threads in Embree's float mode.
 template <typename F>
-void forEachSlice(size_t count, F f, size_t grain = 256) {
+void forEachSlice(size_t count, int threads, F f, size_t grain = 256) {
   LibraryCall call;
-  parallelForRange(tbb::blocked_range<size_t>(0, count, grain),
-                   [&](const tbb::blocked_range<size_t>& range) {
-                     const FlushToZeroScope flushToZero;
-                     f(range.begin(), range.end());
-                   });
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    parallelForRange(tbb::blocked_range<size_t>(0, count, grain),
+                     [&](const tbb::blocked_range<size_t>& range) {
+                       const FlushToZeroScope flushToZero;
+                       f(range.begin(), range.end());
+                     });
+  });
 }
 
 // Runs f(i) for every ray, as forEachSlice does.
 template <typename F>
-void forEachRay(size_t count, F f) {
-  forEachSlice(count, [&](size_t begin, size_t end) {
+void forEachRay(size_t count, int threads, F f) {
+  forEachSlice(count, threads, [&](size_t begin, size_t end) {
     for (size_t i = begin; i != end; ++i) f(i);
   });
 }
@@ -125,11 +137,11 @@ void forEachRay(size_t count, F f) {
 // settle the tie by the other rays of its packet, so packets that began wherever a thread's
 // slice began would make such hits depend on the threads.
 template <typename F>
-void forEachHit(const RenderScene& scene, const Rays& rays, F f) {
+void forEachHit(const RenderScene& scene, const Rays& rays, int threads, F f) {
   constexpr size_t kLanes = Accel::kPacketSize;
   const size_t packets = (rays.count + kLanes - 1) / kLanes;
   forEachSlice(
-      packets,
+      packets, threads,
       [&](size_t begin, size_t end) {
         std::array<Ray, kLanes> batch;
         std::array<std::optional<SurfaceInteraction>, kLanes> hits;
@@ -179,8 +191,9 @@ RayScene([model, ...])
       .def(
           "cast_rays",
           [](const PyRayScene& s, py::handle origins, py::handle directions, double tnear,
-             double tfar) {
+             double tfar, int threads) {
             const Rays rays = raysOf(origins, directions, tnear, tfar);
+            threads = threadCount(threads);
             const py::ssize_t k = py::ssize_t(rays.count);
             py::array_t<double> t(k), position({k, py::ssize_t(3)}), geometric({k, py::ssize_t(3)}),
                 shading({k, py::ssize_t(3)});
@@ -189,27 +202,28 @@ RayScene([model, ...])
                    *pg = geometric.mutable_data(), *ps = shading.mutable_data();
             int64_t *pprim = primitive.mutable_data(), *ppatch = patch.mutable_data(),
                     *pgeom = geometry.mutable_data();
-            forEachHit(*s.scene, rays, [&](size_t i, const std::optional<SurfaceInteraction>& si) {
-              if (!si) {
-                pt[i] = kInfinity;
-                for (int c = 0; c < 3; ++c) {
-                  pp[3 * i + c] = std::numeric_limits<double>::quiet_NaN();
-                  pg[3 * i + c] = ps[3 * i + c] = 0.0;
-                }
-                pprim[i] = ppatch[i] = pgeom[i] = -1;
-                return;
-              }
-              pt[i] = si->t;
-              for (int c = 0; c < 3; ++c) {
-                pp[3 * i + c] = si->p[c];
-                pg[3 * i + c] = si->geometricNormal[c];
-                ps[3 * i + c] = si->shadingNormal[c];
-              }
-              const int64_t model = s.modelOfGeometry[si->geometryId];
-              pgeom[i] = model;
-              pprim[i] = si->primitive;
-              ppatch[i] = s.patchOf(size_t(model), si->primitive);
-            });
+            forEachHit(*s.scene, rays, threads,
+                       [&](size_t i, const std::optional<SurfaceInteraction>& si) {
+                         if (!si) {
+                           pt[i] = kInfinity;
+                           for (int c = 0; c < 3; ++c) {
+                             pp[3 * i + c] = std::numeric_limits<double>::quiet_NaN();
+                             pg[3 * i + c] = ps[3 * i + c] = 0.0;
+                           }
+                           pprim[i] = ppatch[i] = pgeom[i] = -1;
+                           return;
+                         }
+                         pt[i] = si->t;
+                         for (int c = 0; c < 3; ++c) {
+                           pp[3 * i + c] = si->p[c];
+                           pg[3 * i + c] = si->geometricNormal[c];
+                           ps[3 * i + c] = si->shadingNormal[c];
+                         }
+                         const int64_t model = s.modelOfGeometry[si->geometryId];
+                         pgeom[i] = model;
+                         pprim[i] = si->primitive;
+                         ppatch[i] = s.patchOf(size_t(model), si->primitive);
+                       });
             py::dict out;
             out["t"] = t;
             out["position"] = position;
@@ -221,9 +235,10 @@ RayScene([model, ...])
             return out;
           },
           py::arg("origins"), py::arg("directions"), py::arg("tnear") = 0.0,
-          py::arg("tfar") = kInfinity, R"doc(
-Nearest hit of every ray o + t d, t in (tnear, tfar), traced in parallel without the GIL,
-16 consecutive rays at a time (a camera's rays in pixel order share Embree's traversal).
+          py::arg("tfar") = kInfinity, py::arg("threads") = 0, R"doc(
+Nearest hit of every ray o + t d, t in (tnear, tfar), traced in parallel without the GIL on
+`threads` threads (0: every core TBB offers), 16 consecutive rays at a time (a camera's rays
+in pixel order share Embree's traversal); the hits do not depend on the thread count.
 origins and directions are (k, 3) float arrays (or one of them (3,), shared by every ray);
 directions need not be unit, t is in units of their length. Returns a dict of arrays:
 
@@ -244,16 +259,19 @@ directions need not be unit, t is in units of their length. Returns a dict of ar
       .def(
           "occluded",
           [](const PyRayScene& s, py::handle origins, py::handle directions, double tnear,
-             double tfar) {
+             double tfar, int threads) {
             const Rays rays = raysOf(origins, directions, tnear, tfar);
+            threads = threadCount(threads);
             py::array_t<bool> out(py::ssize_t(rays.count));
             bool* po = out.mutable_data();
-            forEachRay(rays.count, [&](size_t i) { po[i] = s.scene->occluded(rays.ray(i)); });
+            forEachRay(rays.count, threads,
+                       [&](size_t i) { po[i] = s.scene->occluded(rays.ray(i)); });
             return out;
           },
           py::arg("origins"), py::arg("directions"), py::arg("tnear") = 0.0,
-          py::arg("tfar") = kInfinity,
-          "(k,) bool: whether anything is hit in (tnear, tfar), as for shadow rays.");
+          py::arg("tfar") = kInfinity, py::arg("threads") = 0,
+          "(k,) bool: whether anything is hit in (tnear, tfar), as for shadow rays; on `threads` "
+          "threads as cast_rays.");
 }
 
 }  // namespace quadtri::python
