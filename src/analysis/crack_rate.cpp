@@ -131,6 +131,13 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
   if (box.empty()) fail("crack rate: the geometry is empty");
   const double diagonal = box.diagonal().norm();
   box.inflate(options.boxMargin * diagonal);
+  // The lines start inside the grown box and run both ways through all of it, so where the
+  // margin would take their origins past what Embree traces (geometry near its limit), the box
+  // is kept within that limit: any point of the line serves as its origin.
+  for (int a = 0; a < 3; ++a) {
+    box.lo[a] = std::max(box.lo[a], -Accel::kLargestCoordinate);
+    box.hi[a] = std::min(box.hi[a], Accel::kLargestCoordinate);
+  }
   const double mergeDistance = 1e-7 * diagonal;
   // From a point of the grown box, the whole box lies within its diagonal.
   const double reach = box.diagonal().norm();

@@ -52,6 +52,13 @@ TEST(CrackRate, ScaleInvariant) {
     EXPECT_EQ(flatCrackRate(icosphere(2, scale), lines(20000)), 0.0) << scale;
 }
 
+// Geometry within what Embree traces whose grown box is not: the lines start inside the range
+// (they run both ways through the box), not at points Embree would refuse.
+TEST(CrackRate, GeometryNearTheLargestCoordinateIsMeasured) {
+  for (const double scale : {1.7e18, 1.79e18})
+    EXPECT_EQ(flatCrackRate(icosphere(2, scale), lines(5000)), 0.0) << scale;
+}
+
 // Box-line measure of a flat hole: the probability that a line through a uniform point of the
 // box with a uniform direction d crosses it is (1/V) E_d[∫_hole |d·n| L(y, d) dA(y)], with
 // L(y, d) the chord of the box through y along d. Estimated here by Monte Carlo.
