@@ -6,6 +6,7 @@
 
 #include <assimp/vector3.h>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <istream>
@@ -19,6 +20,9 @@
 #include "quadtri/mesh/mesh_io_check.h"
 
 namespace quadtri::mesh_check {
+
+/// A point or normal as the native readers keep it: the file's number as the nearest double.
+using Point3 = std::array<double, 3>;
 
 /// Assimp's element counters are 32-bit.
 constexpr uint64_t kMaxAssimpCount = std::numeric_limits<uint32_t>::max();
@@ -55,17 +59,19 @@ std::string readMeshFile(const std::filesystem::path& path);
 
 /// A plain OBJ file as Assimp's OBJ importer lays it out: one vertex per face corner, in face
 /// order (triangle f is vertices 3f, 3f+1, 3f+2); vertex i at the file's v line pointOf[i] and,
-/// when the file's faces give normals, with its vn line normalOf[i] (0-based).
+/// when the file's faces give normals, with its vn line normalOf[i] (0-based). The numbers are
+/// doubles (Assimp would round them to floats).
 struct ObjCorners {
-  std::vector<aiVector3D> points, normals;
+  std::vector<Point3> points, normals;
   std::vector<uint32_t> pointOf, normalOf;
 };
 
 /// Reads an OBJ file natively (any bytes are safe; its result is meant for a file that
 /// validateObj accepts, inspectMeshBytes, which may run at the same time), when it holds
-/// only what this reader gives exactly as Assimp does: v lines of three numbers, vn, vt, faces of
+/// only what this reader gives as Assimp does: v lines of three numbers, vn, vt, faces of
 /// three corners, every one with a normal or none, s lines, blank lines and comments at the
-/// start of a line. Numbers are parsed by Assimp's own parser (fast_atoreal_move). Returns
+/// start of a line. Numbers take the syntax Assimp's parser takes and are read as the nearest
+/// doubles (std::from_chars), where Assimp keeps floats. Returns
 /// nullopt for anything else (objects, groups, materials, polygons, lines, homogeneous or
 /// coloured vertices, ...), which Assimp then reads. `text` must end in a NUL (std::string's).
 std::optional<ObjCorners> readPlainObj(std::string_view text);
@@ -89,13 +95,13 @@ struct OffBody {
   uint64_t firstEmptyFaceLine = 0;  ///< the line of the first face of 0 corners, 0 if none
 };
 
-/// An OFF file as read: positions (and NOFF's normals, one per position) rounded to floats
-/// from the correctly rounded doubles, and 3 corners per triangle, indices into `points` (their
-/// triangles are only kept when `points` is, OffMesh given to readOffBody).
+/// An OFF file as read: positions (and NOFF's normals, one per position) as the correctly
+/// rounded doubles, and 3 corners per triangle, indices into `points` (their triangles are only
+/// kept when `points` is, OffMesh given to readOffBody).
 struct OffMesh {
   OffHeader header;
   OffBody body;
-  std::vector<aiVector3D> points, normals;
+  std::vector<Point3> points, normals;
   std::vector<uint32_t> corners;
 };
 

@@ -64,10 +64,13 @@ class BufferIoSystem : public Assimp::IOSystem {
 // file's vertex lines, as Assimp's OFF importer gave them, and its triangles are `corners`, 3
 // vertices each. Without faces or corners, vertices 3f, 3f+1 and 3f+2 make triangle f.
 struct Part {
+  // Assimp's rows are floats, the native readers' doubles: one of each pair is set.
   const aiVector3D* points = nullptr;
+  const mesh_check::Point3* exactPoints = nullptr;
   size_t pointCount = 0;
   const uint32_t* pointOf = nullptr;
   const aiVector3D* normals = nullptr;
+  const mesh_check::Point3* exactNormals = nullptr;
   size_t normalCount = 0;
   const uint32_t* normalOf = nullptr;
   size_t vertexCount = 0;
@@ -75,6 +78,14 @@ struct Part {
   size_t faces_ = 0;
   const uint32_t* corners = nullptr;
   size_t cornerCount = 0;
+  std::array<double, 3> point(size_t r) const {
+    if (exactPoints) return exactPoints[r];
+    return {double(points[r].x), double(points[r].y), double(points[r].z)};
+  }
+  Vec3 normal(size_t r) const {
+    if (exactNormals) return Vec3(exactNormals[r][0], exactNormals[r][1], exactNormals[r][2]);
+    return Vec3(normals[r].x, normals[r].y, normals[r].z);
+  }
   uint32_t pointRow(size_t v) const { return pointOf ? pointOf[v] : uint32_t(v); }
   uint32_t normalRow(size_t v) const { return normalOf ? normalOf[v] : uint32_t(v); }
   size_t faceCount() const { return faces ? faces_ : corners ? cornerCount / 3 : vertexCount / 3; }
@@ -117,19 +128,20 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
       bases(name, parts, [](const Part& p) { return p.pointCount; });
   const std::vector<size_t> normalBase =
       bases(name, parts, [&](const Part& p) { return allHaveNormals ? p.normalCount : 0; });
-  // Positions as Assimp holds them (floats), normals as the mesh keeps them (unit doubles).
-  std::vector<std::array<float, 3>> pointKeys = largeVector<std::array<float, 3>>(pointBase.back());
+  // Positions as the readers give them (doubles; Assimp's floats widened), normals as the mesh
+  // keeps them (unit doubles).
+  std::vector<std::array<double, 3>> pointKeys =
+      largeVector<std::array<double, 3>>(pointBase.back());
   std::vector<std::array<double, 3>> normalKeys =
       largeVector<std::array<double, 3>>(normalBase.back());
   std::vector<char> normalOk(normalBase.back(), 0);
   for (size_t m = 0; m < parts.size(); ++m) {
     const Part& part = parts[m];
-    parallelFor(size_t(0), part.pointCount, [&](size_t r) {
-      pointKeys[pointBase[m] + r] = {part.points[r].x, part.points[r].y, part.points[r].z};
-    });
+    parallelFor(size_t(0), part.pointCount,
+                [&](size_t r) { pointKeys[pointBase[m] + r] = part.point(r); });
     if (!allHaveNormals) continue;
     parallelFor(size_t(0), part.normalCount, [&](size_t r) {
-      const Vec3 n(part.normals[r].x, part.normals[r].y, part.normals[r].z);
+      const Vec3 n = part.normal(r);
       // A zero or broken normal in the file is replaced by the face normal below; its key (zero)
       // matches no unit normal.
       const size_t i = normalBase[m] + r;
@@ -140,7 +152,7 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
   }
   for (size_t m = 0; m < parts.size(); ++m)
     for (size_t v = 0; v < parts[m].vertexCount; ++v) {
-      const std::array<float, 3>& p = pointKeys[pointBase[m] + parts[m].pointRow(v)];
+      const std::array<double, 3>& p = pointKeys[pointBase[m] + parts[m].pointRow(v)];
       if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
         fail("{}: vertex {} of mesh {} has a non-finite coordinate", name, v, m);
     }
@@ -159,13 +171,13 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
         uint32_t& id = idOfRow[firstPoint[row]];
         if (id == ~0u) {
           id = uint32_t(mesh.positions.size());
-          const std::array<float, 3>& p = pointKeys[row];
+          const std::array<double, 3>& p = pointKeys[row];
           mesh.positions.emplace_back(p[0], p[1], p[2]);
         }
         pos[base[m] + v] = id;
       }
   }
-  std::vector<std::array<float, 3>>().swap(pointKeys);
+  std::vector<std::array<double, 3>>().swap(pointKeys);
   std::vector<uint32_t> normalIdOfRow = largeVector(normalBase.back(), ~0u);
   size_t triangles = 0;
   for (size_t m = 0; m < parts.size(); ++m) triangles += parts[m].faceCount();
@@ -316,7 +328,8 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     fail("{}: the file holds no faces (no 'f' line); a mesh needs at least one triangle", name);
   if (budget) chargeMeshFile(*budget, info, path);
   TriangleMesh mesh;
-  // A plain OBJ file (mesh_check::readPlainObj) is read natively, the same as Assimp reads it.
+  // A plain OBJ file (mesh_check::readPlainObj) is read natively, as Assimp reads it but in
+  // double precision.
   if (plainObj && !plainTried) plain = mesh_check::readPlainObj(bytes);
   if (ext == ".off" && reader == MeshReader::Auto) {
     // OFF is read natively, never by Assimp (mesh_check::readOff); the digest is taken while it
@@ -325,9 +338,9 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     parallelInvoke([&] { digest = FileDigest::of(bytes); },
                    [&] { off = mesh_check::readOff(name, bytes); });
     Part part;
-    part.points = off.points.data();
+    part.exactPoints = off.points.data();
     part.pointCount = off.points.size();
-    part.normals = off.normals.data();
+    part.exactNormals = off.normals.data();
     part.normalCount = off.normals.size();
     part.vertexCount = off.points.size();
     part.corners = off.corners.data();
@@ -335,10 +348,10 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     mesh = weldParts(name, {part}, off.header.normals);
   } else if (plain) {
     Part part;
-    part.points = plain->points.data();
+    part.exactPoints = plain->points.data();
     part.pointCount = plain->points.size();
     part.pointOf = plain->pointOf.data();
-    part.normals = plain->normals.data();
+    part.exactNormals = plain->normals.data();
     part.normalCount = plain->normals.size();
     part.normalOf = plain->normalOf.data();
     part.vertexCount = plain->pointOf.size();

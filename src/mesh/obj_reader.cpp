@@ -1,14 +1,16 @@
 // The native reader of plain OBJ files (mesh_check.h, readPlainObj). Assimp's OBJ importer
 // spends most of a large file's load: its parser, one vertex per corner and then its
 // post-processing copies. For the files that hold only vertices, normals and triangles, this
-// reader gives the mesh that importer gives, with Assimp's own number parser, and leaves every
-// other file to Assimp.
+// reader gives the mesh that importer gives, its numbers taken as Assimp's parser takes them but
+// kept as the nearest doubles, and leaves every other file to Assimp.
 #include <assimp/fast_atof.h>
 
 #include <array>
 #include <charconv>
+#include <cstdlib>
 #include <limits>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -38,16 +40,26 @@ struct NotANumber {
   explicit NotANumber(Text&&...) {}
 };
 
-// A number as Assimp's OBJ importer reads it; nullopt unless the parser takes the whole token.
-std::optional<ai_real> number(std::string_view token) {
-  ai_real value = 0;
+// A number of the syntax Assimp's OBJ importer takes, as the nearest double (Assimp's parser
+// would give a float, and its own sums of the digits may be off by more than rounding); nullopt
+// unless Assimp's parser takes the whole token.
+std::optional<double> number(std::string_view token) {
+  double assimp = 0;
   try {
-    const char* end = Assimp::fast_atoreal_move<ai_real, NotANumber>(token.data(), value);
+    const char* end = Assimp::fast_atoreal_move<double, NotANumber>(token.data(), assimp);
     if (end != token.data() + token.size()) return std::nullopt;
   } catch (const NotANumber&) {
     return std::nullopt;
   }
-  return value;
+  std::string_view digits = token;
+  if (digits.size() > 1 && digits[0] == '+') digits.remove_prefix(1);
+  double value = 0;
+  const char* end = digits.data() + digits.size();
+  const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
+  if (ptr != end) return assimp;  // a form from_chars does not take ("1.e5" is one Assimp does)
+  if (ec == std::errc::result_out_of_range)
+    return std::strtod(std::string(digits).c_str(), nullptr);  // 0, a denormal or infinite
+  return ec == std::errc() ? value : assimp;
 }
 
 // A 1-based or negative (relative) index among `count` elements, 0-based; nullopt when invalid.
@@ -65,8 +77,8 @@ std::optional<size_t> objIndex(std::string_view text, size_t count) {
 
 std::optional<ObjCorners> readPlainObj(std::string_view text) {
   ObjCorners out;
-  std::vector<aiVector3D>& v = out.points;
-  std::vector<aiVector3D>& vn = out.normals;
+  std::vector<Point3>& v = out.points;
+  std::vector<Point3>& vn = out.normals;
   int withNormals = -1;  // unknown until the first face; then 0 or 1 for every face
   std::array<std::string_view, 4> tokens;
   size_t next = 0;
@@ -92,9 +104,9 @@ std::optional<ObjCorners> readPlainObj(std::string_view text) {
         if (tokens[k][0] == '.') return std::nullopt;
     if (key == "v" || key == "vn") {
       if (n != 3) return std::nullopt;
-      aiVector3D p;
-      for (int k = 0; k < 3; ++k) {
-        const std::optional<ai_real> x = number(tokens[k]);
+      Point3 p;
+      for (size_t k = 0; k < 3; ++k) {
+        const std::optional<double> x = number(tokens[k]);
         if (!x) return std::nullopt;
         p[k] = *x;
       }

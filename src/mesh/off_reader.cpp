@@ -51,10 +51,10 @@ class Words {
   const char* end_;
 };
 
-// A decimal number as Python's float() reads it, correctly rounded to a double and then to the
-// nearest float (what the manifest's reader welds by); false unless the word is a number.
-// Non-finite values (nan, inf, or beyond a float's range) are returned as such.
-bool parseNumber(std::string_view word, float& out) {
+// A decimal number as Python's float() reads it, correctly rounded to a double; false unless the
+// word is a number. Non-finite values (nan, inf, or beyond a double's range) are returned as
+// such.
+bool parseNumber(std::string_view word, double& out) {
   if (word.size() > 1 && word[0] == '+' && word[1] != '-' && word[1] != '+') word.remove_prefix(1);
   double value = 0.0;
   const char* end = word.data() + word.size();
@@ -67,7 +67,7 @@ bool parseNumber(std::string_view word, float& out) {
   } else if (ec != std::errc()) {
     return false;
   }
-  out = float(value);
+  out = value;
   return true;
 }
 
@@ -144,7 +144,7 @@ constexpr size_t kMaxEarClipCorners = 64;
 // normal) is fanned from its first corner; one that is not (its fan would fold over itself) is
 // cut into ears in that plane, which keeps every triangle inside it. The triangles use only the
 // polygon's corners and keep its winding, so its edges are the ones its fan would give.
-void triangulate(const std::vector<uint32_t>& polygon, const std::vector<aiVector3D>& points,
+void triangulate(const std::vector<uint32_t>& polygon, const std::vector<Point3>& points,
                  std::vector<uint32_t>& corners) {
   const size_t k = polygon.size();
   const auto fan = [&](size_t first) {
@@ -156,11 +156,11 @@ void triangulate(const std::vector<uint32_t>& polygon, const std::vector<aiVecto
   // counter-clockwise.
   double n[3] = {0, 0, 0};
   for (size_t i = 0; i < k; ++i) {
-    const aiVector3D& a = points[polygon[i]];
-    const aiVector3D& b = points[polygon[(i + 1) % k]];
-    n[0] += (double(a.y) - b.y) * (double(a.z) + b.z);
-    n[1] += (double(a.z) - b.z) * (double(a.x) + b.x);
-    n[2] += (double(a.x) - b.x) * (double(a.y) + b.y);
+    const Point3& a = points[polygon[i]];
+    const Point3& b = points[polygon[(i + 1) % k]];
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
   }
   const int axis = std::abs(n[0]) >= std::abs(n[1]) && std::abs(n[0]) >= std::abs(n[2]) ? 0
                    : std::abs(n[1]) >= std::abs(n[2])                                   ? 1
@@ -170,9 +170,8 @@ void triangulate(const std::vector<uint32_t>& polygon, const std::vector<aiVecto
   const double flip = n[axis] > 0 ? 1.0 : -1.0;
   std::array<std::array<double, 2>, kMaxEarClipCorners> p;
   for (size_t i = 0; i < k; ++i) {
-    const aiVector3D& q = points[polygon[i]];
-    const float c[3] = {q.x, q.y, q.z};
-    p[i] = {flip * double(c[u]), double(c[w])};
+    const Point3& q = points[polygon[i]];
+    p[i] = {flip * q[size_t(u)], q[size_t(w)]};
   }
   const auto cross = [&](size_t a, size_t b, size_t c) {
     return (p[b][0] - p[a][0]) * (p[c][1] - p[a][1]) - (p[b][1] - p[a][1]) * (p[c][0] - p[a][0]);
@@ -309,7 +308,7 @@ OffBody readOffBody(const std::string& name, std::string_view bytes, const OffHe
     if (!words.next(word)) continue;  // blank or a comment
     if (v < h.vertices) {
       // x y z, then nx ny nz for NOFF; colours and texture coordinates after them are not read.
-      float x[6] = {};
+      double x[6] = {};
       const char* needs =
           h.normals ? "3 finite coordinates and 3 normal components" : "3 finite coordinates";
       for (size_t k = 0; k < need; ++k) {
@@ -320,12 +319,12 @@ OffBody readOffBody(const std::string& name, std::string_view bytes, const OffHe
                quoted(word), quoted(line));
         // A normal that is not finite is replaced by its face's, as in every format.
         if (k < 3 && !std::isfinite(x[k]))
-          fail("{}:{}: vertex {} needs {}: '{}' is not finite as a 32-bit float: '{}'", name,
-               lineNo, v, needs, quoted(word), quoted(line));
+          fail("{}:{}: vertex {} needs {}: '{}' is not finite: '{}'", name, lineNo, v, needs,
+               quoted(word), quoted(line));
       }
       if (out) {
-        out->points.emplace_back(x[0], x[1], x[2]);
-        if (h.normals) out->normals.emplace_back(x[3], x[4], x[5]);
+        out->points.push_back({x[0], x[1], x[2]});
+        if (h.normals) out->normals.push_back({x[3], x[4], x[5]});
       }
       ++v;
       continue;

@@ -76,8 +76,8 @@ TEST_F(OffReader, ReadsCountsCoordinatesAndComments) {
   EXPECT_EQ(m.positions[1], Vec3(1, 0, 0));
   EXPECT_EQ(m.positions[2], Vec3(1, 1, 0));
   EXPECT_EQ(m.positions[3], Vec3(0, 1, 0));
-  // Floats, as every format's positions: -0.1 rounded to the nearest float.
-  EXPECT_EQ(m.positions[4], Vec3(0.5, 2.25, double(-0.1f)));
+  // The nearest double to -1e-1 (Assimp's formats would give the nearest float).
+  EXPECT_EQ(m.positions[4], Vec3(0.5, 2.25, -0.1));
   // The quad fanned from its first corner.
   EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}, {0, 2, 3}, {3, 2, 4}}));
   EXPECT_FALSE(m.repairs.any()) << m.repairs.summary();
@@ -150,16 +150,17 @@ TEST_F(OffReader, NoffNormalsAreTheFilesNormals) {
   EXPECT_EQ(m.repairs.replacedNormals, 2u);  // vertex 2 in both triangles
 }
 
-// Positions are welded by exact equality as floats, as for every format: two vertex lines of
-// one point (and -0 = +0, the first one's sign kept) are one position, numbered in the file's
-// order (as Assimp's OFF importer numbered them); an unused vertex is removed and reported.
+// Positions are welded by exact equality of their doubles: two vertex lines of one point (and
+// -0 = +0, the first one's sign kept) are one position, numbered in the file's order (as
+// Assimp's OFF importer numbered them); an unused vertex is removed and reported.
 TEST_F(OffReader, WeldsEqualPositionsInTheFilesOrder) {
   const fs::path path = write("weld.off",
                               "OFF\n6 2 0\n"
-                              "5 5 5\n1 0 0\n0 0 -0\n0 1 0\n0 0 0\n1.00000001 0 0\n"
+                              "5 5 5\n1 0 0\n0 0 -0\n0 1 0\n0 0 0\n1.000000000000000001 0 0\n"
                               "3 1 2 3\n3 3 4 5\n");
   const TriangleMesh m = loadMesh(path);
-  ASSERT_EQ(m.positions.size(), 3u);  // 5 5 5 is unused; 1.00000001 is 1 as a float
+  // 5 5 5 is unused; 1.000000000000000001 is 1 as a double.
+  ASSERT_EQ(m.positions.size(), 3u);
   EXPECT_EQ(m.positions[0], Vec3(1, 0, 0));
   EXPECT_TRUE(std::signbit(m.positions[1].z()));
   EXPECT_EQ(m.triangles, (std::vector<Tri>{{0, 1, 2}}));
@@ -221,8 +222,8 @@ TEST_F(OffReader, BadFilesAreRefusedNamingTheLine) {
   expectRefused("nan.off", "OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n",
                 {"nan.off:4: vertex 1 needs 3 finite coordinates: 'nan' is not finite"});
   // Finite as a double, not as a float.
-  expectRefused("huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1e39 0\n3 0 1 2\n",
-                {"huge.off:5: vertex 2 needs 3 finite coordinates: '1e39'"});
+  expectRefused("huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1e309 0\n3 0 1 2\n",
+                {"huge.off:5: vertex 2 needs 3 finite coordinates: '1e309'"});
   expectRefused("noff.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0\n0 1 0 0 0 1\n3 0 1 2\n",
                 {"noff.off:4: vertex 1 needs 3 finite coordinates and 3 normal components"});
   expectRefused("index.off", "OFF\n3 2 0\n" + tri + "3 0 1 2\n3 0 1 3\n",
