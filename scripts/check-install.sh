@@ -12,7 +12,18 @@ trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 test -f "$work/prefix/include/quadtri/surface/model.h"
 test -x "$work/prefix/bin/quadtri"
-test -f "$work/prefix/lib/pkgconfig/quadtri.pc" || test -f "$work"/prefix/lib/*/pkgconfig/quadtri.pc
+pc=
+for f in "$work"/prefix/lib/pkgconfig/quadtri.pc "$work"/prefix/lib/*/pkgconfig/quadtri.pc; do
+  if [ -f "$f" ]; then pc=$f; fi
+done
+test -n "$pc"
+# pkg-config's flags name the prefix given to --install (the .pc file is relocatable): the
+# consumer builds with them alone.
+flags=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags --libs quadtri)
+case "$flags" in *"$work/prefix"*) ;; *) echo "install: pkg-config names no prefix: $flags" >&2; exit 1 ;; esac
+c++ -std=c++20 -O1 examples/consumer/main.cpp -o "$work/consumer-pc" $flags
+"$work/consumer-pc" icosphere:1 quadric-implicit-robust | grep -q "hit z = 0.99373"
+echo "install: consumer built with pkg-config's flags alone"
 cmake -S examples/consumer -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
