@@ -93,6 +93,27 @@ void writeStreamAtomically(const std::filesystem::path& path,
   });
 }
 
+void checkDistinctFiles(const std::vector<std::filesystem::path>& inputs,
+                        const std::filesystem::path& output, const std::string& what) {
+  namespace fs = std::filesystem;
+  // One file under two names when both exist and are equivalent (a link, "a/../b"); a name that
+  // does not exist is only itself.
+  const auto same = [](const fs::path& a, const fs::path& b) {
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
+    return a.lexically_normal() == b.lexically_normal();
+  };
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    if (same(inputs[i], output))
+      fail("{}: the output is also an input ({} {}): writing it would replace what is read",
+           output.string(), what, i + 1);
+    for (size_t j = 0; j < i; ++j)
+      if (same(inputs[j], inputs[i]))
+        fail("{}: given twice ({}s {} and {}{})", inputs[i].string(), what, j + 1, i + 1,
+             inputs[j] == inputs[i] ? "" : fmt::format(", as {}", inputs[j].string()));
+  }
+}
+
 void writeTextFile(const std::filesystem::path& path, const std::string& text) {
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);

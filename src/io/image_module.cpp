@@ -60,7 +60,9 @@ const ImageModule* load() {
   for (const fs::path& path : paths) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
-      tried += "\n  " + path.string() + ": no such file";
+      tried +=
+          "\n  " + path.string() +
+          (fs::is_directory(path, ec) ? ": a folder, not the module's file" : ": no such file");
       continue;
     }
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

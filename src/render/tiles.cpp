@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "quadtri/io/atomic_file.h"
 #include "quadtri/math/error.h"
 #include "quadtri/render/image_io.h"
 
@@ -141,6 +142,7 @@ size_t unfinishedPixels(const Tile& tile) {
 MergeSummary mergeTiles(const std::vector<std::filesystem::path>& paths,
                         const std::filesystem::path& output, const MergeOptions& options) {
   if (paths.empty()) fail("merge: no tiles given");
+  checkDistinctFiles(paths, output, "tile");
   std::vector<Tile> tiles;
   tiles.reserve(paths.size());
   for (const auto& path : paths) tiles.push_back(readTile(path));

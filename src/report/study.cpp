@@ -355,6 +355,7 @@ std::vector<fs::path> writeStudy(const fs::path& dir, const std::vector<StudyRow
 size_t mergeStudyShards(const std::vector<std::filesystem::path>& shards,
                         const std::filesystem::path& output) {
   if (shards.empty()) fail("merge: no study shards given");
+  checkDistinctFiles(shards, output, "study shard");
   std::vector<CsvTable> tables;
   for (const auto& path : shards) {
     tables.push_back(readCsvFile(path));

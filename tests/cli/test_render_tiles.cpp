@@ -18,6 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 struct Read {
   ImageFileSpec spec;
   std::vector<float> rgb;
@@ -179,6 +184,15 @@ TEST(RenderTiles, MergeRefusesMissingDoubledAndForeignTiles) {
   EXPECT_NE(err.find(t3 + " and " + overlap + " both cover the 3 pixels of window 4,12,3,1"),
             std::string::npos)
       << err;
+  err = mergeError({t1, t2, t3, t2});
+  EXPECT_NE(err.find(t2 + ": given twice (tiles 2 and 4)"), std::string::npos) << err;
+  // The output may not be one of the tiles: the merge would replace a tile it reads.
+  {
+    const std::string t2Bytes = readFile(t2);
+    ASSERT_EQ(run({"merge", t1, t2, t3, "-o", t2}, dir, "merge-onto-tile", &err), 1) << err;
+    EXPECT_NE(err.find(t2 + ": the output is also an input (tile 2)"), std::string::npos) << err;
+    EXPECT_EQ(readFile(t2), t2Bytes);
+  }
   err = mergeError({t1, t2, seed8});
   EXPECT_NE(err.find(seed8 + ": quadtri_seed 8, but " + t1 + " has 5"), std::string::npos) << err;
   err = mergeError({t1, t2, spp4});

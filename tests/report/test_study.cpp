@@ -244,13 +244,36 @@ TEST(Study, ShardCsvsMergeIntoTheWholeStudysRows) {
   const fs::path refused = folder.dir / "refused.csv";
   try {
     mergeStudyShards({shards[0], shards[1], shards[0]}, refused);
+    ADD_FAILURE() << "a shard given twice merged";
+  } catch (const Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find(shards[0].string() + ": given twice (study shards 1 and 3)"),
+        std::string::npos)
+        << e.what();
+  }
+  // A copy of a shard under another name holds the same meshes' rows.
+  const fs::path copy = folder.dir / "copy.csv";
+  fs::copy_file(shards[0], copy);
+  try {
+    mergeStudyShards({shards[0], shards[1], copy}, refused);
     ADD_FAILURE() << "overlapping shards merged";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("has rows in " + shards[0].string() + " and " +
-                                         shards[0].string()),
+    EXPECT_NE(
+        std::string(e.what()).find("has rows in " + shards[0].string() + " and " + copy.string()),
+        std::string::npos)
+        << e.what();
+  }
+  // The output may not be one of the shards: it would be replaced while read.
+  const std::string before = readCsvFile(shards[1]).rows.back().front();
+  try {
+    mergeStudyShards({shards[0], shards[1]}, shards[1]);
+    ADD_FAILURE() << "merged onto a shard";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the output is also an input (study shard 2)"),
               std::string::npos)
         << e.what();
   }
+  EXPECT_EQ(readCsvFile(shards[1]).rows.back().front(), before);
   std::ofstream(folder.dir / "other.csv") << "mesh,something\nico.obj,1\n";
   EXPECT_THROW(mergeStudyShards({shards[0], folder.dir / "other.csv"}, refused), Error);
   EXPECT_FALSE(fs::exists(refused));

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace quadtri {
 
@@ -18,6 +19,12 @@ void writeAtomically(const std::filesystem::path& path,
 /// Async-signal-safe (it only reads a fixed table and calls unlink), for a signal handler that
 /// ends the process at once and must leave no temporary file behind.
 void removeTemporaryFilesNow() noexcept;
+
+/// Throws Error, naming the files, when two of `inputs` are one file (given twice, or under two
+/// names) or `output` is one of them (a merge would replace an input it reads); `what` names
+/// the inputs in the message ("tile", "study shard").
+void checkDistinctFiles(const std::vector<std::filesystem::path>& inputs,
+                        const std::filesystem::path& output, const std::string& what);
 
 /// Writes `text` to `path` atomically.
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
