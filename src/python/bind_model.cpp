@@ -147,6 +147,16 @@ an unknown model or a mesh it rejects.
               if (ts.data()[i] < 0 || size_t(ts.data()[i]) >= p.model->patchCount())
                 throw py::value_error(fmt::format("t: patch {} out of range [0, {})", ts.data()[i],
                                                   p.model->patchCount()));
+            // The patch's domain, with a hair of slack for (u, v) computed in floating point.
+            constexpr double kSlack = 1e-9;
+            for (size_t i = 0; i < n; ++i) {
+              const double u1 = us.data()[i], v1 = vs.data()[i];
+              if (!(u1 >= -kSlack && v1 >= -kSlack && u1 + v1 <= 1.0 + kSlack))
+                throw py::value_error(fmt::format(
+                    "u, v: ({}, {}) at index {} is not a point of the patch: expected u >= 0, "
+                    "v >= 0 and u + v <= 1",
+                    u1, v1, i));
+            }
             shape.push_back(3);
             py::array_t<double> P(shape), N(shape);
             double *pp = P.mutable_data(), *pn = N.mutable_data();
@@ -165,7 +175,8 @@ an unknown model or a mesh it rejects.
           },
           py::arg("t"), py::arg("u"), py::arg("v"), R"doc(
 Position and unit geometric normal of patch t at barycentric (u, v): (0, 0) is corner 0, (1, 0)
-corner 1, (0, 1) corner 2. t, u, v broadcast against each other; returns P, N of their shape + (3,).
+corner 1, (0, 1) corner 2; u >= 0, v >= 0, u + v <= 1 (ValueError otherwise, NaN included).
+t, u, v broadcast against each other; returns P, N of their shape + (3,).
 )doc")
       .def(
           "tessellate",

@@ -3,6 +3,7 @@
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -157,6 +158,13 @@ def test_evaluate_reproduces_corners_and_broadcasts():
     assert P.shape == (4, 5, 3)
     np.testing.assert_allclose(np.linalg.norm(P, axis=-1), 1.0, atol=1e-9)  # the unit sphere
     np.testing.assert_allclose(Nrm, P, atol=1e-9)
+    # Points off the patch (NaN included) are refused, naming the first one.
+    for u, v, where in ((np.nan, 0.3, "(nan, 0.3) at index 0"), (2.0, 2.0, "(2, 2) at index 0"),
+                        ([0.2, -0.1], 0.1, "(-0.1, 0.1) at index 1")):
+        with pytest.raises(ValueError, match=re.escape(where)):
+            m.evaluate(0, u, v)
+    P, _ = m.evaluate(0, 0.5 + 1e-12, 0.5)  # rounding on the edge u + v = 1 is a point of it
+    assert np.isfinite(P).all()
 
 
 def to_array(value):
