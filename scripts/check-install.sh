@@ -49,7 +49,7 @@ if "$work/prefix/bin/quadtri" merge "$work/crop.exr" -o "$work/merged.exr" 2>"$w
   echo "install: merge took one 16x12 window for the whole film" >&2
   exit 1
 fi
-grep -q "do not cover" "$work/merge.err" || { cat "$work/merge.err" >&2; exit 1; }
+grep -q "does not cover" "$work/merge.err" || { cat "$work/merge.err" >&2; exit 1; }
 echo "install: the installed quadtri rendered a window of the default scene to EXR"
 # The Python module, when built: imported from the prefix, the same ray cast from Python.
 if [ -d "$work/prefix/lib/python3/dist-packages/quadtri" ]; then

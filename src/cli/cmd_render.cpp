@@ -163,12 +163,13 @@ Action addRenderCommand(CLI::App& app) {
           tile ? "tile " + tile->toString() : std::string("crop"),
           PixelWindow{camera.cropX(), camera.cropY(), camera.width(), camera.height()}.toString(),
           camera.filmWidth(), camera.filmHeight());
-    fmt::print(
-        stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
-        built.integrator->adaptive()
-            ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
-            : std::to_string(options.samplesPerPixel),
-        settings.threads > 0 ? fmt::format(", {} threads", settings.threads) : std::string());
+    fmt::print(stderr, "rendering {}x{}, {} samples/pixel{}\n", camera.width(), camera.height(),
+               built.integrator->adaptive()
+                   ? fmt::format("up to {}", built.integrator->adaptive()->maxSamples)
+                   : std::to_string(options.samplesPerPixel),
+               settings.threads > 0 ? fmt::format(", {} thread{}", settings.threads,
+                                                  settings.threads == 1 ? "" : "s")
+                                    : std::string());
     const RenderResult result = render(*built.scene, *built.integrator, options);
     if (!result.checkpointError.empty())
       fmt::print(stderr, "warning: checkpoints stopped: {}\n", result.checkpointError);

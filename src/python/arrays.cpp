@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string_view>
 
 #include "quadtri/mesh/normals.h"
@@ -25,14 +26,21 @@ std::string expected(std::string_view what, const char* rowName, py::ssize_t col
                  : fmt::format("{} array", what);
 }
 
+// "a float array", "an integer array": `what` with its indefinite article.
+static std::string withArticle(const std::string& what) {
+  const bool vowel =
+      !what.empty() && std::string_view("aeiou").find(what[0]) != std::string_view::npos;
+  return (vowel ? "an " : "a ") + what;
+}
+
 // `obj` as an array whose dtype kind is one of `kinds`, or TypeError.
 py::array checkedArray(py::handle obj, const char* name, std::string_view kinds,
                        const std::string& what) {
   py::array a = py::array::ensure(obj);
   const bool isArray = py::isinstance<py::array>(obj);
   if (!a) {
-    throw py::type_error(fmt::format("{}: expected a {}, got a {} that numpy cannot convert", name,
-                                     what,
+    throw py::type_error(fmt::format("{}: expected {}, got a {} that numpy cannot convert", name,
+                                     withArticle(what),
                                      std::string(py::str(py::type::of(obj).attr("__name__")))));
   }
   const char kind = a.dtype().kind();
@@ -41,14 +49,15 @@ py::array checkedArray(py::handle obj, const char* name, std::string_view kinds,
         !isArray && kind == 'O'
             ? fmt::format("a {}", std::string(py::str(py::type::of(obj).attr("__name__"))))
             : fmt::format("dtype {}", std::string(py::str(a.dtype())));
-    throw py::type_error(fmt::format("{}: expected a {}, got {}", name, what, got));
+    throw py::type_error(fmt::format("{}: expected {}, got {}", name, withArticle(what), got));
   }
   return a;
 }
 
 void checkShape(const py::array& a, const char* name, const std::string& what, py::ssize_t cols) {
   if (a.ndim() != 2 || a.shape(1) != cols)
-    throw py::value_error(fmt::format("{}: expected a {}, got shape {}", name, what, shapeOf(a)));
+    throw py::value_error(
+        fmt::format("{}: expected {}, got shape {}", name, withArticle(what), shapeOf(a)));
 }
 
 }  // namespace
@@ -219,6 +228,19 @@ py::tuple meshArrays(const TriangleMesh& mesh, bool split, const std::string& wh
                      "split=True returns the corner normals as N, NI",
                      what, splitCount, mesh.positions.size()));
   return result;
+}
+
+uint64_t wholeNumber(py::handle obj, const char* name) {
+  // Whatever has __index__ (an int, a numpy integer), but not a bool.
+  if (!PyIndex_Check(obj.ptr()) || py::isinstance<py::bool_>(obj))
+    throw py::type_error(fmt::format("{}: expected an int, got a {}", name,
+                                     std::string(py::str(py::type::of(obj).attr("__name__")))));
+  const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(obj.ptr()));
+  if (!value) throw py::error_already_set();
+  if (value < py::int_(0) || value > py::int_(std::numeric_limits<uint64_t>::max()))
+    throw py::value_error(fmt::format("{} = {}: expected a whole number from 0 to 2^64 - 1", name,
+                                      std::string(py::str(obj))));
+  return value.cast<uint64_t>();
 }
 
 std::string pathOf(py::handle obj) {

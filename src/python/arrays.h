@@ -79,6 +79,11 @@ struct LibraryCall {
 /// The path `obj` names (str, bytes or os.PathLike).
 std::string pathOf(py::handle obj);
 
+/// `obj` as a whole number of 0 or more that fits 64 bits: TypeError for anything but an int,
+/// ValueError naming `name` for a negative or too large one (pybind11's own conversion of an
+/// unsigned argument only says the arguments are incompatible).
+uint64_t wholeNumber(py::handle obj, const char* name);
+
 /// The warning category of meshArrays, created by the module.
 extern PyObject* splitNormalsWarning;
 

@@ -85,8 +85,10 @@ void bindMesh(py::module_& m) {
 The smooth surface a built-in shape samples, to measure models against (truth_distance).
 
 Surface(kind, a=1, b=1, c=1): kind "sphere" (radius a), "ellipsoid" (semi-axes a, b, c),
-"torus" (major radius a, minor radius b, around the z axis) or "genus2" (the pretzel
-(x^4 - x^2 + y^2)^2 + z^2 = a^2, tube a = 0.2 in shape("genus2")).
+"torus" (major radius a, minor radius b, around the z axis), "genus2" (the pretzel
+(x^4 - x^2 + y^2)^2 + z^2 = a^2, tube a = 0.2 in shape("genus2")), or, with creases, "box"
+(centred at the origin, half extents a, b, c) or "cylinder" (capped, around the z axis, radius
+a, z from -b to b).
 )doc")
       .def(py::init(&makeSurface), py::arg("kind"), py::arg("a") = 1.0, py::arg("b") = 1.0,
            py::arg("c") = 1.0)

@@ -252,8 +252,11 @@ neighbours meet exactly): joins (b, 2) the two patches, plane (b, 4) the shared 
 )doc")
       .def(
           "analyze",
-          [](const PyModel& p, size_t lines, uint64_t seed, std::optional<AnalyticSurface> truth,
-             const std::string& meshName, int edgeSamples, int truthLevel) {
+          [](const PyModel& p, py::handle linesArg, py::handle seedArg,
+             std::optional<AnalyticSurface> truth, const std::string& meshName, int edgeSamples,
+             int truthLevel) {
+            const uint64_t lines = wholeNumber(linesArg, "lines");
+            const uint64_t seed = wholeNumber(seedArg, "seed");
             if (lines == 0) throw py::value_error("lines 0: expected a positive number of lines");
             AnalysisOptions options;
             options.tessellation = p.tessellation;

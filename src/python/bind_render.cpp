@@ -31,7 +31,7 @@ void bindRender(py::module_& m) {
   m.def(
       "render",
       [](py::handle scene, std::optional<int> spp, std::optional<py::dict> defines,
-         std::optional<std::string> model, std::optional<uint64_t> seed, int threads,
+         std::optional<std::string> model, py::handle seedArg, int threads,
          std::optional<double> time, bool returnStats) {
         const std::string file = pathOf(scene);
         SceneRenderRequest request;
@@ -43,7 +43,7 @@ void bindRender(py::module_& m) {
           }
         settings.model = model;
         settings.samplesPerPixel = spp;
-        settings.seed = seed;
+        if (!seedArg.is_none()) settings.seed = wholeNumber(seedArg, "seed");
         settings.threads = threads;
         if (time && !(*time > 0.0))
           throw py::value_error(

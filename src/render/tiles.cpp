@@ -210,8 +210,10 @@ MergeSummary mergeTiles(const std::vector<std::filesystem::path>& paths,
   if (!problems.empty()) {
     std::string text;
     for (const std::string& p : problems) text += "\n  " + p;
-    fail("merge: the {} tiles do not cover the {}x{} film exactly once:{}", tiles.size(), width,
-         height, text);
+    fail("merge: {} not cover the {}x{} film exactly once:{}",
+         tiles.size() == 1 ? std::string("the 1 tile does")
+                           : fmt::format("the {} tiles do", tiles.size()),
+         width, height, text);
   }
 
   // A tile cut short by --time or a signal has black pixels that look rendered.

@@ -141,8 +141,8 @@ void checkResumable(const RenderState& state, uint64_t key, int width, int heigh
   if (state.key != key)
     fail(
         "{}: the render state was saved by another render (key {:016x}, this render's "
-        "{:016x}): the scene, a mesh file, -D, --model, --spp, --seed or quadtri's version "
-        "differ; expected the state of this render",
+        "{:016x}): the scene, a mesh file, -D, --model, --spp, --seed, the window (--tile, "
+        "--crop) or quadtri's version differ; expected the state of this render",
         path, state.key, key);
 }
 

@@ -123,3 +123,16 @@ def test_other_argument_errors():
         quadtri.render("scene.xml", defines={"res": [1]})
     with pytest.raises(ValueError, match="P: expected a float array of shape \\(k, 3\\)"):
         quadtri.Surface("sphere").distance(np.zeros(3))
+    # Counts and seeds: a negative or fractional one is named (pybind11 alone would only say
+    # the arguments are incompatible); numpy integers are whole numbers too.
+    with pytest.raises(ValueError, match=r"lines = -1: expected a whole number"):
+        m.analyze(lines=-1)
+    with pytest.raises(ValueError, match=r"seed = -1: expected a whole number"):
+        m.analyze(lines=10, seed=-1)
+    with pytest.raises(TypeError, match="lines: expected an int, got a float"):
+        m.analyze(lines=2.5)
+    with pytest.raises(ValueError, match=r"seed = -1: expected a whole number"):
+        quadtri.render("scene.xml", seed=-1)
+    assert m.analyze(lines=np.int64(10), seed=np.uint64(2**64 - 1))["crack_rate"] is not None
+    with pytest.raises(TypeError, match="expected an integer array"):
+        quadtri.Model("flat", V, F.astype(float))
