@@ -102,6 +102,10 @@ an unknown model or a mesh it rejects.
       .def(py::init([](const std::string& name, py::handle V, py::handle F, py::handle N,
                        py::handle NI, py::handle tessellation) {
              auto mesh = std::make_shared<TriangleMesh>(meshFromArrays(V, F, N, NI));
+             if (mesh->triangles.empty())
+               throw py::value_error(
+                   "F: shape (0, 3): a model is built from at least one triangle (as a mesh file "
+                   "holding none is refused)");
              PyModel model;
              model.tessellation = tessellationOf(tessellation);
              LibraryCall call;

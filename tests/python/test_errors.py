@@ -136,3 +136,5 @@ def test_other_argument_errors():
     assert m.analyze(lines=np.int64(10), seed=np.uint64(2**64 - 1))["crack_rate"] is not None
     with pytest.raises(TypeError, match="expected an integer array"):
         quadtri.Model("flat", V, F.astype(float))
+    with pytest.raises(ValueError, match=r"F: shape \(0, 3\): a model is built from at least one"):
+        quadtri.Model("pn", np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64))
