@@ -22,6 +22,9 @@ namespace {
 constexpr int kMaxIncludeDepth = 16;
 
 std::string readFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    fail("{}: a folder, expected a scene file (Mitsuba 3 XML)", path.string());
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("{}: cannot open the scene file", path.string());
   std::ostringstream text;

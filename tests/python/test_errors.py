@@ -1,6 +1,8 @@
 """Errors: the library's messages as quadtri.Error (the CLI's text), and arguments of the wrong
 shape or dtype rejected with a message naming them."""
 
+import pathlib
+
 import numpy as np
 import pytest
 
@@ -138,3 +140,5 @@ def test_other_argument_errors():
         quadtri.Model("flat", V, F.astype(float))
     with pytest.raises(ValueError, match=r"F: shape \(0, 3\): a model is built from at least one"):
         quadtri.Model("pn", np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64))
+    with pytest.raises(quadtri.Error, match="a folder, expected a scene file"):
+        quadtri.render(pathlib.Path(__file__).parent)
