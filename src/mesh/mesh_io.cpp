@@ -328,6 +328,7 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
     fail("{}: the file holds no faces (no 'f' line); a mesh needs at least one triangle", name);
   if (budget) chargeMeshFile(*budget, info, path);
   TriangleMesh mesh;
+  int significandBits = 53;  // the precision of the coordinates: doubles, but floats from Assimp
   // A plain OBJ file (mesh_check::readPlainObj) is read natively, as Assimp reads it but in
   // double precision.
   if (plainObj && !plainTried) plain = mesh_check::readPlainObj(bytes);
@@ -367,9 +368,10 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
       digest = FileDigest::of(bytes);
     }
     mesh = loadWithAssimp(name, ext, plyText.empty() ? bytes : plyText);
+    significandBits = 24;
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);
-  repairMesh(mesh);
+  repairMesh(mesh, significandBits);
   if (mesh.triangles.empty())
     fail("{}: every triangle names a vertex twice; no surface is left", name);
   applyNormals(mesh, normals);

@@ -23,18 +23,21 @@ std::string count(size_t n, const char* one, const char* many) {
   return fmt::format("{} {}", n, n == 1 ? one : many);
 }
 
-/// Zero area up to the precision meshes are read in (Assimp reads single-precision floats): the
-/// third vertex lies within 4 float ulps of the triangle's largest coordinate from the line of
-/// its longest edge. A triangle of distinct points that lie on one line stays in the mesh (it
-/// still joins its neighbours' edges), and every model gives it no area of its own.
-bool zeroArea(const TriangleMesh& mesh, size_t t) {
+/// Zero area up to the precision the mesh was read in (`significandBits`: 24 for Assimp's
+/// floats, 53 for doubles): the third vertex lies within 4 units of that precision at the
+/// triangle's largest coordinate from the line of its longest edge (for doubles 16 units, above
+/// the rounding of the cross product that measures it). A triangle of distinct points that lie
+/// on one line stays in the mesh (it still joins its neighbours' edges), and every model gives
+/// it no area of its own.
+bool zeroArea(const TriangleMesh& mesh, size_t t, int significandBits) {
   double longest = 0.0, extent = 0.0;
   for (int k = 0; k < 3; ++k) {
     longest = std::max(longest, (mesh.corner(t, (k + 1) % 3) - mesh.corner(t, k)).norm());
     extent = std::max(extent, mesh.corner(t, k).cwiseAbs().maxCoeff());
   }
   const double height = longest > 0.0 ? mesh.faceCross(t).norm() / longest : 0.0;
-  return height <= 4.0 * std::ldexp(extent, -24);
+  const double units = significandBits >= 53 ? 16.0 : 4.0;
+  return height <= units * std::ldexp(extent, -std::min(significandBits, 53));
 }
 
 void keepTriangles(TriangleMesh& mesh, const std::vector<char>& keep) {
@@ -129,7 +132,7 @@ std::string MeshRepairs::summary() const {
   return s;
 }
 
-MeshRepairs repairMesh(TriangleMesh& mesh) {
+MeshRepairs repairMesh(TriangleMesh& mesh, int significandBits) {
   MeshRepairs did;
   const size_t n = mesh.triangles.size();
   std::vector<char> keep(n, 1);
@@ -181,7 +184,8 @@ MeshRepairs repairMesh(TriangleMesh& mesh) {
   mesh.topologyCache.forget();
   auto topo = std::make_shared<const MeshTopology>(mesh);
   std::tie(did.reorientedFaces, did.nonOrientableParts) = orientParts(mesh, *topo);
-  for (size_t t = 0; t < mesh.triangles.size(); ++t) did.zeroAreaFaces += zeroArea(mesh, t);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    did.zeroAreaFaces += zeroArea(mesh, t, significandBits);
   did.nonManifoldEdges = topo->nonManifoldEdgeCount();
   // Unless a face was re-wound (its local edges renumbered), the mesh keeps this adjacency for
   // the normals, the model, its metrics and its tessellation.

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -51,6 +52,17 @@ void objFace(fmt::memory_buffer& b, const Tri& tri, const Tri* normals) {
     if (normals) fmt::format_to(std::back_inserter(b), "//{}", (*normals)[k] + 1);
   }
   b.push_back('\n');
+}
+
+// PLY holds 32-bit floats (what other tools read): a coordinate past a float's range would be
+// written as infinite, and no reader could take the file back.
+void checkFloatRange(const Vec3& p, size_t vertex, const std::filesystem::path& path) {
+  const double largest = p.cwiseAbs().maxCoeff();
+  if (!(largest <= double(std::numeric_limits<float>::max())))
+    fail(
+        "{}: vertex {} has a coordinate of {}, beyond a 32-bit float's range (PLY is written with "
+        "floats); write OBJ, which keeps 17 digits",
+        path.string(), vertex, largest);
 }
 
 // A binary little-endian PLY file's header, and its values through a buffer of about 1 MB.
@@ -102,6 +114,8 @@ void saveMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
     if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
   if (ext != ".obj" && ext != ".ply")
     fail("{}: unsupported output format '{}': expected .obj or .ply", path.string(), ext);
+  if (ext == ".ply")
+    for (size_t i = 0; i < mesh.positions.size(); ++i) checkFloatRange(mesh.positions[i], i, path);
   // Written as a stream through buffers of a few MB; the text is never whole in memory.
   if (ext == ".obj") {
     writeStreamAtomically(path, [&](std::ostream& out) {
@@ -177,8 +191,11 @@ void saveMeshStream(const MeshStream& mesh, const std::filesystem::path& path) {
     positions.clear();
     normals.clear();
     (extra ? mesh.blockExtraNormals : mesh.blockPoints)(b, positions, normals);
-    for (const Vec3& p : positions)
-      if (!allFinite(p)) fail("{}: refusing to write a non-finite vertex", path.string());
+    for (size_t i = 0; i < positions.size(); ++i) {
+      if (!allFinite(positions[i]))
+        fail("{}: refusing to write a non-finite vertex", path.string());
+      if (ext == ".ply") checkFloatRange(positions[i], seen + i, path);
+    }
     if (mesh.hasNormals && normals.size() != positions.size())
       fail("{}: block {} has {} points and {} normals", path.string(), b, positions.size(),
            normals.size());

@@ -232,7 +232,9 @@ py::tuple meshArrays(const TriangleMesh& mesh, bool split, const std::string& wh
 
 uint64_t wholeNumber(py::handle obj, const char* name) {
   // Whatever has __index__ (an int, a numpy integer), but not a bool.
-  if (!PyIndex_Check(obj.ptr()) || py::isinstance<py::bool_>(obj))
+  const bool isBool = py::isinstance<py::bool_>(obj) ||
+                      std::string(py::str(py::type::of(obj).attr("__name__"))) == "bool_";
+  if (!PyIndex_Check(obj.ptr()) || isBool)
     throw py::type_error(fmt::format("{}: expected an int, got a {}", name,
                                      std::string(py::str(py::type::of(obj).attr("__name__")))));
   const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(obj.ptr()));

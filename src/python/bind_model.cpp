@@ -106,6 +106,14 @@ an unknown model or a mesh it rejects.
                throw py::value_error(
                    "F: shape (0, 3): a model is built from at least one triangle (as a mesh file "
                    "holding none is refused)");
+             for (size_t t = 0; t < mesh->triangles.size(); ++t) {
+               const Tri& f = mesh->triangles[t];
+               if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0])
+                 throw py::value_error(fmt::format(
+                     "F: row {} ({}, {}, {}) names a vertex twice: no triangle (a mesh file's such "
+                     "rows are removed on loading; load_mesh gives the repaired arrays)",
+                     t, f[0], f[1], f[2]));
+             }
              PyModel model;
              model.tessellation = tessellationOf(tessellation);
              LibraryCall call;

@@ -136,6 +136,50 @@ TEST_F(MeshLoad, SavedMeshesLoadBitForBitFarFromTheOrigin) {
   }
 }
 
+// A triangle counts as zero-area to within the precision its file is read in: a real one a
+// tenth wide at 10^6 is one from OBJ (doubles), but not from ASCII PLY (Assimp's floats resolve
+// 0.06 there); three decimal points on a line are one in either.
+TEST_F(MeshLoad, ZeroAreaIsJudgedAtThePrecisionTheFileIsReadIn) {
+  const std::string far = "1000000 0 0\n1000000.1 0 0\n1000000 0.1 0\n";
+  const auto obj = [](const std::string& points) {
+    std::string text;
+    std::istringstream in(points);
+    for (std::string line; std::getline(in, line);) text += "v " + line + "\n";
+    return text + "f 1 2 3\n";
+  };
+  const auto ply = [](const std::string& points) {
+    return "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+           "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+           "end_header\n" +
+           points + "3 0 1 2\n";
+  };
+  EXPECT_EQ(loadMesh(write("far.obj", obj(far))).repairs.zeroAreaFaces, 0u);
+  EXPECT_EQ(loadMesh(write("far.ply", ply(far))).repairs.zeroAreaFaces, 1u);
+  const std::string line = "0.1 0.1 0.1\n0.2 0.2 0.2\n0.3 0.3 0.3\n";
+  EXPECT_EQ(loadMesh(write("line.obj", obj(line))).repairs.zeroAreaFaces, 1u);
+  EXPECT_EQ(loadMesh(write("line.ply", ply(line))).repairs.zeroAreaFaces, 1u);
+}
+
+// PLY is written with 32-bit floats: a coordinate past their range is refused by name (it would
+// be written as infinite, a file no reader takes back), and nothing is left behind; OBJ keeps it.
+TEST_F(MeshLoad, PlyRefusesCoordinatesBeyondAFloat) {
+  TriangleMesh mesh = parseBuiltinSpec("tetrahedron")->mesh;
+  mesh.positions[2].y() = 1e39;
+  const fs::path ply = dir / "big.ply", obj = dir / "big.obj";
+  try {
+    saveMesh(mesh, ply);
+    ADD_FAILURE() << "wrote a coordinate of 1e39 as a float";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 2 has a coordinate of 1e+39, beyond a 32-bit "
+                                         "float's range"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(ply));
+  saveMesh(mesh, obj);
+  EXPECT_EQ(loadMesh(obj).positions.size(), mesh.positions.size());
+}
+
 TEST_F(MeshLoad, PositionsAreWeldedInOrderOfFirstUse) {
   // Vertex 3 (0, 0, -0) equals vertex 1 (0, 0, 0): one position, with the sign of its first
   // use. Positions are numbered as the faces first use them, not as the file lists them.

@@ -168,6 +168,17 @@ TEST_F(OffReader, WeldsEqualPositionsInTheFilesOrder) {
   EXPECT_EQ(m.repairs.isolatedVertices, 1u);  // 5 5 5
 }
 
+// Points equal as floats but not as doubles stay two points: a float would weld 1.00000001
+// to 1.
+TEST_F(OffReader, PointsApartAsDoublesStayApart) {
+  const TriangleMesh m = loadMesh(write("near.off",
+                                        "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1.00000001 0 0\n"
+                                        "3 0 1 2\n3 0 3 2\n"));
+  ASSERT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.positions[3].x(), 1.00000001);
+  EXPECT_EQ(m.repairs.duplicateFaces, 0u);
+}
+
 // A file may start with its counts (the keyword is optional); the header's counts may also
 // follow the keyword on a later line.
 TEST_F(OffReader, TheKeywordIsOptional) {

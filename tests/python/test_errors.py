@@ -142,3 +142,7 @@ def test_other_argument_errors():
         quadtri.Model("pn", np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64))
     with pytest.raises(quadtri.Error, match="a folder, expected a scene file"):
         quadtri.render(pathlib.Path(__file__).parent)
+    with pytest.raises(ValueError, match=r"F: row 1 \(0, 2, 0\) names a vertex twice"):
+        quadtri.Model("flat", V, np.array([[0, 1, 2], [0, 2, 0]]))
+    with pytest.raises(TypeError, match="lines: expected an int, got a bool"):
+        m.analyze(lines=np.True_)

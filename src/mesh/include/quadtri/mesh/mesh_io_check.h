@@ -24,8 +24,9 @@ struct MeshFileInfo {
   /// Triangles after triangulation: exact for OBJ and STL; the declared faces otherwise (a
   /// polygon makes more, a face Assimp skips none).
   uint64_t triangles = 0;
-  uint64_t normals = 0, texcoords = 0;  ///< OBJ's vn and vt lines
-  uint64_t otherElements = 0;           ///< PLY elements other than vertex and face
+  uint64_t normals = 0,
+           texcoords = 0;      ///< OBJ's vn and vt lines (normals: also NOFF's, one per vertex)
+  uint64_t otherElements = 0;  ///< PLY elements other than vertex and face
   /// Estimated peak bytes of loading the file into a TriangleMesh: the file buffer, Assimp's
   /// scene before and after its post-processing, and the welded mesh (see estimateLoadBytes).
   uint64_t loadBytes = 0;

@@ -40,8 +40,11 @@ struct MeshRepairs {
 /// mesh without normals, since file normals say which side is out. Counts
 /// zero-area triangles, non-manifold edges and non-orientable parts, which stay. Adds to
 /// `mesh.repairs` and returns what this call did. Triangles keep their order otherwise, and a
-/// mesh without defects is left bitwise unchanged.
-MeshRepairs repairMesh(TriangleMesh& mesh);
+/// mesh without defects is left bitwise unchanged. `significandBits` is the precision the
+/// coordinates were read in (24: floats, as Assimp reads them; 53: doubles, the native OBJ and
+/// OFF readers and arrays): a triangle counts as zero-area when its third vertex lies within 4
+/// units of that precision, at the triangle's largest coordinate, of its longest edge's line.
+MeshRepairs repairMesh(TriangleMesh& mesh, int significandBits = 53);
 
 /// "WHAT: removed …; kept …" when the loader repaired or kept a defect of `mesh`, for the
 /// caller to print as a warning.
