@@ -44,22 +44,25 @@ struct NotANumber {
 // would give a float, and its own sums of the digits may be off by more than rounding); nullopt
 // unless Assimp's parser takes the whole token.
 std::optional<double> number(std::string_view token) {
-  double assimp = 0;
-  try {
-    const char* end = Assimp::fast_atoreal_move<double, NotANumber>(token.data(), assimp);
-    if (end != token.data() + token.size()) return std::nullopt;
-  } catch (const NotANumber&) {
-    return std::nullopt;
-  }
   std::string_view digits = token;
   if (digits.size() > 1 && digits[0] == '+') digits.remove_prefix(1);
   double value = 0;
   const char* end = digits.data() + digits.size();
   const auto [ptr, ec] = std::from_chars(digits.data(), end, value);
-  if (ptr != end) return assimp;  // a form from_chars does not take ("1.e5" is one Assimp does)
-  if (ec == std::errc::result_out_of_range)
+  // The common case: a decimal number both parsers take whole (the file's lines were checked
+  // to hold finite numbers, validateObj), read once.
+  if (ptr == end && ec == std::errc()) return value;
+  // Otherwise Assimp's parser decides whether the token is a number at all.
+  double assimp = 0;
+  try {
+    const char* stop = Assimp::fast_atoreal_move<double, NotANumber>(token.data(), assimp);
+    if (stop != token.data() + token.size()) return std::nullopt;
+  } catch (const NotANumber&) {
+    return std::nullopt;
+  }
+  if (ptr == end && ec == std::errc::result_out_of_range)
     return std::strtod(std::string(digits).c_str(), nullptr);  // 0, a denormal or infinite
-  return ec == std::errc() ? value : assimp;
+  return assimp;  // a form from_chars does not take whole ("1.e5" is one Assimp takes)
 }
 
 // A 1-based or negative (relative) index among `count` elements, 0-based; nullopt when invalid.
