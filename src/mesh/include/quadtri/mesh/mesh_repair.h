@@ -42,8 +42,9 @@ struct MeshRepairs {
 /// `mesh.repairs` and returns what this call did. Triangles keep their order otherwise, and a
 /// mesh without defects is left bitwise unchanged. `significandBits` is the precision the
 /// coordinates were read in (24: floats, as Assimp reads them; 53: doubles, the native OBJ and
-/// OFF readers and arrays): a triangle counts as zero-area when its third vertex lies within 4
-/// units of that precision, at the triangle's largest coordinate, of its longest edge's line.
+/// OFF readers and arrays): a triangle counts as zero-area when its third vertex lies within a
+/// few units of that precision (4 for floats, 16 for doubles, above the rounding of the cross
+/// product), at the triangle's largest coordinate, of its longest edge's line.
 MeshRepairs repairMesh(TriangleMesh& mesh, int significandBits = 53);
 
 /// "WHAT: removed …; kept …" when the loader repaired or kept a defect of `mesh`, for the
