@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "accel_callbacks.h"
 #include "quadtri/math/error.h"
@@ -51,6 +52,25 @@ RTCDevice sharedDevice() {
 // Native triangles and user geometry are two Embree scenes (Accel::Impl::scenes).
 enum SceneKind { kNative = 0, kUser = 1 };
 
+// The point Embree's float coordinates are relative to (Accel::origin): the centre of the box
+// of everything added where that box lies far from the world origin, more than 8 times its
+// largest half-extent along some axis, so that every coordinate Embree sees is at most a seventh
+// of the point's largest world coordinate (and float rounding, relative to that, is 7 times
+// finer or more); otherwise the world origin, whose float grid is finer near 0 than near any
+// other point. Up to 1e15 from the world origin, so that coordinates within
+// Accel::kLargestCoordinate stay within Embree's range once moved.
+Vec3 frameOrigin(const Bounds3& b) {
+  if (b.empty()) return Vec3::Zero();
+  const Vec3 centre = 0.5 * (b.lo + b.hi);
+  const double half = 0.5 * (b.hi - b.lo).maxCoeff(), far = centre.cwiseAbs().maxCoeff();
+  return far > 8.0 * half && far <= 1e15 ? centre : Vec3::Zero();
+}
+
+// The largest coordinate of b relative to `frame`.
+double extentFrom(const Bounds3& b, const Vec3& frame) {
+  return std::max((b.lo - frame).cwiseAbs().maxCoeff(), (b.hi - frame).cwiseAbs().maxCoeff());
+}
+
 // Whether the ray meets box b within [t0, t1] (the slab test). The selections are written as
 // the comparisons minsd and maxsd make, so they compile to those alone. A NaN step (a zero
 // direction component with the origin in a face's plane) comes out as a miss, which a box
@@ -80,7 +100,20 @@ struct Accel::Impl {
   // (rtcAttachGeometryByID).
   RTCScene scenes[2] = {nullptr, nullptr};
   size_t sceneGeometries[2] = {0, 0};
-  Bounds3 userReach;
+  Bounds3 userReach;  // in world coordinates
+  // Every geometry's box in world coordinates, and the origin of the coordinates Embree holds,
+  // chosen from it at commit (frameOrigin): a scene far from the world origin is traced in
+  // floats relative to its own centre.
+  Bounds3 added;
+  Vec3 origin = Vec3::Zero();
+  // Triangle geometries wait for the origin: their vertices in double precision, their index
+  // buffer ready, their id reserved.
+  struct PendingTriangles {
+    uint32_t id;
+    std::vector<double> positions;
+    std::vector<uint32_t> indices;
+  };
+  std::vector<PendingTriangles> pendingTriangles;
   uint32_t nextId = 0;
   bool committed = false;
   size_t bytes = 0, partBytes = 0;
@@ -110,6 +143,31 @@ struct Accel::Impl {
     check(what);
     ++sceneGeometries[kind];
     return id;
+  }
+  // Hands a pending triangle geometry to Embree, its vertices as floats relative to `origin`.
+  void attachTriangles(PendingTriangles& pending) {
+    const size_t vertexCount = pending.positions.size() / 3;
+    // The buffers are the Accel's, shared with Embree: large ones ask for huge pages before
+    // they are filled (math/large_array.h). One float of padding: Embree reads the last vertex
+    // with a 16-byte load.
+    std::vector<float> vertexBuffer = largeVector<float>(pending.positions.size() + 1);
+    for (size_t i = 0; i < vertexCount; ++i)
+      for (int c = 0; c < 3; ++c)
+        vertexBuffer[3 * i + size_t(c)] = float(pending.positions[3 * i + size_t(c)] - origin[c]);
+    std::vector<double>().swap(pending.positions);
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    check("creating a triangle geometry");
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               vertexBuffer.data(), 0, 3 * sizeof(float), vertexCount);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               pending.indices.data(), 0, 3 * sizeof(uint32_t),
+                               pending.indices.size() / 3);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scenes[kNative], geom, pending.id);
+    rtcReleaseGeometry(geom);
+    check("attaching a triangle geometry");
+    vertexBuffers.push_back(std::move(vertexBuffer));
+    indexBuffers.push_back(std::move(pending.indices));
   }
   // One Embree user geometry of `count` primitives with these callbacks, attached to the user
   // scene; `what` names the step in an error.
@@ -163,51 +221,40 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
   if (impl_->committed) fail("adding triangles: the acceleration structure is already committed");
   if (mesh.triangles.empty())
     fail("triangles for the acceleration structure: the mesh has no triangles");
-  // The buffers are the Accel's, shared with Embree: large ones ask for huge pages before they
-  // are filled (math/large_array.h). One float of padding: Embree reads the last vertex with a
-  // 16-byte load.
-  std::vector<float> vertexBuffer = largeVector<float>(3 * mesh.positions.size() + 1);
-  std::vector<uint32_t> indexBuffer = largeVector<uint32_t>(3 * mesh.triangles.size());
-  float* vertices = vertexBuffer.data();
-  uint32_t* indices = indexBuffer.data();
-  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  impl_->check("creating a triangle geometry");
+  // Kept in double precision until commit, when the origin of Embree's coordinates is known.
+  Impl::PendingTriangles pending{0, std::vector<double>(3 * mesh.positions.size()),
+                                 largeVector<uint32_t>(3 * mesh.triangles.size())};
   // The entry check for any caller's mesh, made while copying (no second pass over a mesh the
   // loader has validated already): what Embree reads must be finite and within the range it
   // traces.
   constexpr const char* kWhat = "triangles for the acceleration structure";
-  for (size_t i = 0; i < mesh.positions.size(); ++i)
+  Bounds3 box;
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
       const double x = mesh.positions[i][c];
-      if (!(std::abs(x) <= kLargestCoordinate)) {
-        rtcReleaseGeometry(geom);
+      if (!(std::abs(x) <= kLargestCoordinate))
         fail(
             "{}: vertex {} has a coordinate of {}: expected a finite number within ±{:g}, the "
             "largest Embree traces",
             kWhat, i, x, kLargestCoordinate);
-      }
-      vertices[3 * i + c] = float(x);
+      pending.positions[3 * i + size_t(c)] = x;
     }
+    box.extend(mesh.positions[i]);
+  }
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
     for (int c = 0; c < 3; ++c) {
       const uint32_t v = mesh.triangles[t][c];
-      if (v >= mesh.positions.size()) {
-        rtcReleaseGeometry(geom);
+      if (v >= mesh.positions.size())
         fail("{}: triangle {} corner {} indexes vertex {}, but there are only {} vertices", kWhat,
              t, c, v, mesh.positions.size());
-      }
-      indices[3 * t + c] = v;
+      pending.indices[3 * t + size_t(c)] = v;
     }
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0,
-                             3 * sizeof(float), mesh.positions.size());
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0,
-                             3 * sizeof(uint32_t), mesh.triangles.size());
-  rtcCommitGeometry(geom);
-  const uint32_t id = impl_->attach(geom, kNative, "attaching a triangle geometry");
-  impl_->vertexBuffers.push_back(std::move(vertexBuffer));
-  impl_->indexBuffers.push_back(std::move(indexBuffer));
+  pending.id = impl_->nextId++;
+  ++impl_->sceneGeometries[kNative];
+  impl_->added.extend(box);
+  impl_->pendingTriangles.push_back(std::move(pending));
   impl_->bytes += (mesh.positions.size() + mesh.triangles.size()) * 3 * sizeof(float);
-  return id;
+  return impl_->pendingTriangles.back().id;
 }
 
 uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
@@ -220,7 +267,7 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
     size_t firstBad = SIZE_MAX;
     int32_t badSide = 0;  // the side a bad bridge joins; 0 where the bounds are bad
     bool badBounds = false;
-    double extent = 0.0;
+    Bounds3 box;
   };
   const Scan scan = parallelReduce(
       tbb::blocked_range<size_t>(0, patches.size(), 4096), Scan(),
@@ -240,14 +287,14 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
               break;
             }
           if (s.firstBad == i) break;
-          s.extent = std::max({s.extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
+          s.box.extend(b);
         }
         return s;
       },
       [](Scan a, const Scan& b) {
         if (b.firstBad < a.firstBad)
           a.firstBad = b.firstBad, a.badSide = b.badSide, a.badBounds = b.badBounds;
-        a.extent = std::max(a.extent, b.extent);
+        a.box.extend(b.box);
         return a;
       });
   if (scan.firstBad != SIZE_MAX && scan.badBounds)
@@ -258,10 +305,10 @@ uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
   if (scan.firstBad != SIZE_MAX)
     fail("quadric patch {}: a bridge must join two patches of the same geometry, not {}",
          scan.firstBad, scan.badSide);
-  const double extent = scan.extent;
   auto user = std::make_unique<accel_detail::PatchGeometry>();
   user->patches = &patches;
-  user->margin = 1e-5 * extent;
+  user->bounds = scan.box;  // the margin is set at commit, from the origin
+  impl_->added.extend(scan.box);
   // Collecting every hit needs each root once: those structures trace patches whole.
   if (mesh && !impl_->options.collectHits) user->parts = quadricPatchParts(patches, *mesh);
   const size_t primitives = user->parts.empty() ? patches.size() : user->parts.size();
@@ -286,7 +333,7 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
   // in parallel (3 pieces per triangle: a million-triangle mesh has 45 million points).
   struct Scan {
     size_t firstNonFinite = SIZE_MAX;
-    double extent = 0.0;
+    Bounds3 box;
   };
   const Scan scan = parallelReduce(
       tbb::blocked_range<size_t>(0, pieces.size(), 4096), Scan(),
@@ -298,14 +345,13 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
             s.firstNonFinite = std::min(s.firstNonFinite, i);
             continue;
           }
-          const Bounds3 b = pieces[i].bounds();
-          s.extent = std::max({s.extent, b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()});
+          s.box.extend(pieces[i].bounds());
         }
         return s;
       },
       [](Scan a, const Scan& b) {
         a.firstNonFinite = std::min(a.firstNonFinite, b.firstNonFinite);
-        a.extent = std::max(a.extent, b.extent);
+        a.box.extend(b.box);
         return a;
       });
   if (scan.firstNonFinite != SIZE_MAX)
@@ -313,10 +359,10 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
         "Bézier piece {}: a control point is not finite or beyond ±{:g} (the largest coordinate "
         "Embree traces)",
         scan.firstNonFinite, kLargestCoordinate);
-  const double extent = scan.extent;
   auto user = std::make_unique<accel_detail::BezierGeometry>();
   user->pieces = &pieces;
-  user->margin = 1e-5 * extent;
+  user->bounds = scan.box;  // the margin is set at commit, from the origin
+  impl_->added.extend(scan.box);
   if (!impl_->options.collectHits) {
     user->tracesSubPatches = true;
     std::vector<char> flat(pieces.size(), 0);
@@ -358,6 +404,20 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
 }
 
 void Accel::commit() {
+  if (impl_->committed) return;
+  impl_->origin = frameOrigin(impl_->added);
+  for (Impl::PendingTriangles& pending : impl_->pendingTriangles) impl_->attachTriangles(pending);
+  impl_->pendingTriangles.clear();
+  // The double ray differs from Embree's float copy by about 6e-8 of its coordinates relative
+  // to the origin: boxes grow by 1e-5 of the geometry's extent from there.
+  for (const auto& g : impl_->patchGeometries) {
+    g->origin = impl_->origin;
+    g->margin = 1e-5 * extentFrom(g->bounds, impl_->origin);
+  }
+  for (const auto& g : impl_->bezierGeometries) {
+    g->origin = impl_->origin;
+    g->margin = 1e-5 * extentFrom(g->bounds, impl_->origin);
+  }
   // Embree builds on its own (TBB) threads and calls the bounds functions there: for
   // ThreadSanitizer, everything before this call is ordered before them, and they before what
   // follows it (the user geometry's address and its margin's are the two edges' tokens).
@@ -374,6 +434,11 @@ void Accel::commit() {
     r.extend(Vec3(b.lower_x, b.lower_y, b.lower_z));
     r.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
     r.inflate(1e-5 * std::max(r.lo.cwiseAbs().maxCoeff(), r.hi.cwiseAbs().maxCoeff()));
+    // In world coordinates, where the rays' slab test is made: moved by the origin, grown by a
+    // few of its double ulps.
+    r.lo += impl_->origin;
+    r.hi += impl_->origin;
+    r.inflate(0x1.0p-50 * impl_->origin.cwiseAbs().maxCoeff());
   }
   for (const auto& g : impl_->patchGeometries) acquireEdge(&g->margin);
   for (const auto& g : impl_->bezierGeometries) acquireEdge(&g->margin);
@@ -429,7 +494,7 @@ RayHit Accel::intersect(const Ray& ray, HitNormal normal) const {
   rtcInitIntersectContext(&ctx.embree);
   startTrace(ctx, ray);
   RTCRayHit rayhit;
-  accel_detail::fillRay(ray, rayhit.ray);
+  accel_detail::fillRay(ray, impl_->origin, rayhit.ray);
   rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
   // Native triangles first: their hit bounds the user geometry's search (the callbacks read it
   // from rayhit, as they would in one scene), and the user scene is skipped where the ray
@@ -467,7 +532,7 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       RTCRay single;
       // An inactive lane gets a defined ray all the same, though Embree only reads the active.
       static const Ray kIdle{Vec3::Zero(), Vec3::UnitZ()};
-      accel_detail::fillRay(i < n ? rays[first + i] : kIdle, single);
+      accel_detail::fillRay(i < n ? rays[first + i] : kIdle, impl_->origin, single);
       rayhit.ray.org_x[i] = single.org_x;
       rayhit.ray.org_y[i] = single.org_y;
       rayhit.ray.org_z[i] = single.org_z;
@@ -489,7 +554,7 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       accel_detail::TraceContext ctx;
       startTrace(ctx, ray);
       RTCRayHit lane;
-      accel_detail::fillRay(ray, lane.ray);
+      accel_detail::fillRay(ray, impl_->origin, lane.ray);
       lane.ray.tfar = rayhit.ray.tfar[i];
       lane.hit.geomID = rayhit.hit.geomID[i];
       lane.hit.primID = rayhit.hit.primID[i];
@@ -517,7 +582,7 @@ bool Accel::occluded(const Ray& ray) const {
   ctx.ray = &ray;
   ctx.tnear = std::max(ray.tnear, 0.0);
   RTCRay r;
-  accel_detail::fillRay(ray, r);
+  accel_detail::fillRay(ray, impl_->origin, r);
   if (impl_->sceneGeometries[kNative] != 0) {
     rtcOccluded1(impl_->scenes[kNative], &ctx.embree, &r);
     if (r.tfar < 0.0f) return true;
@@ -538,7 +603,7 @@ void Accel::allHits(const Ray& ray, std::vector<RayHit>& hits) const {
   ctx.tnear = std::max(ray.tnear, 0.0);
   ctx.hits = &hits;
   RTCRayHit rayhit;
-  accel_detail::fillRay(ray, rayhit.ray);
+  accel_detail::fillRay(ray, impl_->origin, rayhit.ray);
   rayhit.hit.geomID = rayhit.hit.primID = rayhit.hit.instID[0] = accel_detail::kInvalidId;
   for (SceneKind kind : {kNative, kUser})
     if (impl_->sceneGeometries[kind] != 0) rtcIntersect1(impl_->scenes[kind], &ctx.embree, &rayhit);
@@ -563,7 +628,16 @@ Bounds3 Accel::bounds() const {
       out.extend(Vec3(b.upper_x, b.upper_y, b.upper_z));
     }
   }
+  if (out.empty()) return out;
+  out.lo += impl_->origin;
+  out.hi += impl_->origin;
+  out.inflate(0x1.0p-50 * impl_->origin.cwiseAbs().maxCoeff());
   return out;
+}
+
+Vec3 Accel::origin() const {
+  impl_->requireCommitted("origin");
+  return impl_->origin;
 }
 
 bool Accel::robust() const {

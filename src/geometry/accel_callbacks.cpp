@@ -55,14 +55,14 @@ void collectTriangleHit(const RTCFilterFunctionNArguments* args) {
 
 namespace {
 
-// Embree's float box holding b grown by `margin`.
-void writeBounds(const Bounds3& b, double margin, RTCBounds* o) {
-  o->lower_x = floatDown(b.lo.x() - margin);
-  o->lower_y = floatDown(b.lo.y() - margin);
-  o->lower_z = floatDown(b.lo.z() - margin);
-  o->upper_x = floatUp(b.hi.x() + margin);
-  o->upper_y = floatUp(b.hi.y() + margin);
-  o->upper_z = floatUp(b.hi.z() + margin);
+// Embree's float box holding b grown by `margin`, relative to `frame`.
+void writeBounds(const Bounds3& b, double margin, const Vec3& frame, RTCBounds* o) {
+  o->lower_x = floatDown(b.lo.x() - frame.x() - margin);
+  o->lower_y = floatDown(b.lo.y() - frame.y() - margin);
+  o->lower_z = floatDown(b.lo.z() - frame.z() - margin);
+  o->upper_x = floatUp(b.hi.x() - frame.x() + margin);
+  o->upper_y = floatUp(b.hi.y() - frame.y() + margin);
+  o->upper_z = floatUp(b.hi.z() - frame.z() + margin);
 }
 
 }  // namespace
@@ -72,7 +72,7 @@ void patchBounds(const RTCBoundsFunctionArguments* args) {
   const auto* g = static_cast<const PatchGeometry*>(args->geometryUserPtr);
   writeBounds(
       g->parts.empty() ? (*g->patches)[args->primID].bounds : g->parts[args->primID].bounds(),
-      g->margin, args->bounds_o);
+      g->margin, g->origin, args->bounds_o);
   releaseEdge(&g->margin);
 }
 
@@ -172,7 +172,7 @@ void bezierBounds(const RTCBoundsFunctionArguments* args) {
   const auto* g = static_cast<const BezierGeometry*>(args->geometryUserPtr);
   writeBounds(g->tracesSubPatches ? g->subPatches[args->primID].bounds()
                                   : (*g->pieces)[args->primID].bounds(),
-              g->margin, args->bounds_o);
+              g->margin, g->origin, args->bounds_o);
   releaseEdge(&g->margin);
 }
 
@@ -253,7 +253,7 @@ void occludedBezier(const RTCOccludedFunctionNArguments* args) {
   if (hit) ray->tfar = -std::numeric_limits<float>::infinity();  // Embree's "occluded" mark
 }
 
-void fillRay(const Ray& ray, RTCRay& out) {
+void fillRay(const Ray& ray, const Vec3& frame, RTCRay& out) {
   // Comparisons that a NaN fails as well.
   const auto inRange = [](const Vec3& v) {
     return std::abs(v.x()) <= Accel::kLargestRayCoordinate &&
@@ -267,9 +267,9 @@ void fillRay(const Ray& ray, RTCRay& out) {
         "largest Embree traces) or not a number",
         ray.origin.x(), ray.origin.y(), ray.origin.z(), ray.direction.x(), ray.direction.y(),
         ray.direction.z(), ray.tnear, ray.tfar, Accel::kLargestRayCoordinate);
-  out.org_x = float(ray.origin.x());
-  out.org_y = float(ray.origin.y());
-  out.org_z = float(ray.origin.z());
+  out.org_x = float(ray.origin.x() - frame.x());
+  out.org_y = float(ray.origin.y() - frame.y());
+  out.org_z = float(ray.origin.z() - frame.z());
   out.dir_x = float(ray.direction.x());
   out.dir_y = float(ray.direction.y());
   out.dir_z = float(ray.direction.z());

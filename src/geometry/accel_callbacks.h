@@ -24,6 +24,8 @@ constexpr unsigned kInvalidId = RTC_INVALID_GEOMETRY_ID;
 struct PatchGeometry {
   const std::vector<QuadricPatch>* patches = nullptr;
   std::vector<QuadricPatchPart> parts;
+  Bounds3 bounds;              // of every patch, in world coordinates
+  Vec3 origin = Vec3::Zero();  // Accel::origin(): Embree's boxes are relative to it
   double margin = 0.0;
 };
 
@@ -40,6 +42,8 @@ struct BezierGeometry {
   std::vector<BezierSubPatch> subPatches;
   unsigned id = kInvalidId, flatGeometry = kInvalidId;
   std::vector<uint32_t> flatPieces;
+  Bounds3 bounds;              // of every piece, in world coordinates
+  Vec3 origin = Vec3::Zero();  // Accel::origin(): Embree's boxes are relative to it
   double margin = 0.0;
 };
 
@@ -66,8 +70,9 @@ RayHit bezierHit(const BezierTriangle& piece, const BezierHit& h, unsigned geome
                  unsigned primitive);
 /// Embree's hit of a flat piece's triangle, again in double precision.
 BezierHit flatPieceHit(const BezierTriangle& piece, const Ray& ray, const RTCRayHit& rayhit);
-/// Embree's float copy of the ray, its interval rounded outward.
-void fillRay(const Ray& ray, RTCRay& out);
+/// Embree's float copy of the ray, its origin relative to `frame` (Accel::origin()), its
+/// interval rounded outward.
+void fillRay(const Ray& ray, const Vec3& frame, RTCRay& out);
 
 // The callbacks Embree calls (single rays: N == 1).
 void collectTriangleHit(const RTCFilterFunctionNArguments* args);

@@ -19,6 +19,16 @@ double maxAbs(const Vec3& v) {
   return v.cwiseAbs().maxCoeff();
 }
 
+// The sum of the absolute values of q's terms at p: what rounding in evaluating q(p) is relative
+// to. Far from the world origin the terms are large and cancel, and a root is known only to
+// about 2^-52 of this sum over the gradient's length.
+double quadricTermScale(const QuadricCoeffs& q, const Vec3& p) {
+  const double x = std::abs(p.x()), y = std::abs(p.y()), z = std::abs(p.z());
+  return std::abs(q[0]) * x * x + std::abs(q[1]) * y * y + std::abs(q[2]) * z * z +
+         std::abs(q[3]) * x * y + std::abs(q[4]) * x * z + std::abs(q[5]) * y * z +
+         std::abs(q[6]) * x + std::abs(q[7]) * y + std::abs(q[8]) * z + std::abs(q[9]);
+}
+
 // Coefficients A..J of the quadric xᵀ Q x = 0 for a symmetric 4×4 Q over (x, y, z, 1).
 QuadricCoeffs coeffsFromMatrix(const Mat4& q) {
   return {q(0, 0),     q(1, 1),     q(2, 2),     2 * q(0, 1), 2 * q(0, 2),
@@ -163,6 +173,7 @@ void RenderScene::setEnvironment(const Color& radiance) {
 void RenderScene::commit() {
   if (committed_) return;
   accel_.commit();
+  origin_ = accel_.origin();
   std::vector<const Emitter*> lights;
   for (const auto& e : emitters_) lights.push_back(e.get());
   lightSampler_ = LightSampler(std::move(lights), bounds_);
@@ -210,8 +221,8 @@ std::optional<SurfaceInteraction> RenderScene::interactionOf(const Ray& ray,
     si.shadingNormal = si.geometricNormal;
     // The largest coordinate of the hit and of the piece's control points (those of its box's
     // corners, without building the box).
-    double extent = maxAbs(si.p);
-    for (const Vec3& c : piece.b) extent = std::max(extent, maxAbs(c));
+    double extent = maxAbs(si.p - origin_);
+    for (const Vec3& c : piece.b) extent = std::max(extent, maxAbs(c - origin_));
     si.offset = floatErrorOffset(extent);
     si.liftedP = si.p;
     return si;
@@ -229,8 +240,12 @@ std::optional<SurfaceInteraction> RenderScene::interactionOf(const Ray& ray,
     if (si.geometricNormal.squaredNorm() == 0.0) si.geometricNormal = -ray.direction;
     si.shadingNormal =
         patch.isBridge() ? primitiveShadingNormal(patches, hit.primitive, p) : si.geometricNormal;
+    // The float error of the boxes and ray copies Embree holds, or, where larger (a quadric
+    // far from the world origin), 32 units of rounding of the root the quadric gives.
     si.offset =
-        floatErrorOffset(std::max({maxAbs(p), maxAbs(patch.bounds.lo), maxAbs(patch.bounds.hi)}));
+        std::max(floatErrorOffset(std::max({maxAbs(p - origin_), maxAbs(patch.bounds.lo - origin_),
+                                            maxAbs(patch.bounds.hi - origin_)})),
+                 g.squaredNorm() > 0.0 ? 0x1.0p-48 * quadricTermScale(patch.q, p) / g.norm() : 0.0);
     si.liftedP = p;
     return si;
   }
@@ -247,7 +262,8 @@ std::optional<SurfaceInteraction> RenderScene::interactionOf(const Ray& ray,
                            hit.v * mesh.cornerNormal(t, 2),
                        si.geometricNormal);
   si.offset = floatErrorOffset(
-      std::max({maxAbs(mesh.corner(t, 0)), maxAbs(mesh.corner(t, 1)), maxAbs(mesh.corner(t, 2))}));
+      std::max({maxAbs(mesh.corner(t, 0) - origin_), maxAbs(mesh.corner(t, 1) - origin_),
+                maxAbs(mesh.corner(t, 2) - origin_)}));
   if (record.liftRayOrigins) {
     si.liftedP = shadingOffsetPoint(mesh, t, Vec3(b0, hit.u, hit.v));
     si.lifted = true;
@@ -278,7 +294,7 @@ Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
   const Vec3 toTarget = target - si.p;
   Ray ray = spawnRay(si, toTarget != Vec3::Zero() ? toTarget : Vec3(Vec3::UnitZ()));
   const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
-  const Vec3 end = target + side * floatErrorOffset(maxAbs(target)) * targetNormal;
+  const Vec3 end = target + side * floatErrorOffset(maxAbs(target - origin_)) * targetNormal;
   const Vec3 toEnd = end - ray.origin;
   ray.direction = safeNormalized(toEnd, ray.tfar);
   return ray;

@@ -143,6 +143,79 @@ TEST(Accel, QuadricSpherePatchesHitAtUnitDistanceWithRadialNormal) {
   }
 }
 
+// A mesh far from the world origin is traced in floats relative to its own centre
+// (Accel::origin), as finely as the same mesh around the origin: the same rays meet both at the
+// same t to float precision of the mesh's size, not of its distance from the origin (a float
+// ulp at 1e6 is 0.0625). A mesh around the origin keeps the world origin.
+TEST(Accel, FarFromTheOriginTracesAsFinelyAsNearIt) {
+  const FlushToZeroScope flushToZero;
+  const TriangleMesh near = icosphere(3);
+  const Vec3 offset(1e6, -3e6, 5e5);
+  TriangleMesh far = near;
+  for (Vec3& x : far.positions) x += offset;
+  Accel nearAccel, farAccel;
+  nearAccel.addTriangles(near);
+  farAccel.addTriangles(far);
+  nearAccel.commit();
+  farAccel.commit();
+  EXPECT_EQ(nearAccel.origin(), Vec3::Zero());
+  EXPECT_LT((farAccel.origin() - offset).cwiseAbs().maxCoeff(), 1e-9);
+  // The box in world coordinates: the mesh's to within float rounding of its size.
+  const Bounds3 box = farAccel.bounds(), meshBox = far.bounds();
+  EXPECT_LT(std::max((box.lo - meshBox.lo).cwiseAbs().maxCoeff(),
+                     (box.hi - meshBox.hi).cwiseAbs().maxCoeff()),
+            1e-6);
+  Pcg32 rng(5);
+  int hits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 from = 3.0 * uniformDirection(rng), to = 0.5 * uniformDirection(rng);
+    const Vec3 d = (to - from).normalized();
+    const RayHit a = nearAccel.intersect({from, d});
+    const RayHit b = farAccel.intersect({from + offset, d});
+    ASSERT_EQ(a.valid(), b.valid()) << i;
+    if (!a.valid()) continue;
+    ++hits;
+    EXPECT_NEAR(a.t, b.t, 1e-6) << i;
+    EXPECT_NEAR((a.geometricNormal - b.geometricNormal).norm(), 0.0, 1e-5) << i;
+    EXPECT_TRUE(farAccel.occluded({from + offset, d, 0.0, b.t + 1e-5}));
+    EXPECT_FALSE(farAccel.occluded({from + offset, d, 0.0, b.t - 1e-5}));
+  }
+  EXPECT_EQ(hits, 2000);
+}
+
+// Quadric patches far from the origin get boxes grown for float error relative to their own
+// centre (1e-5 of their size), not of their distance from the origin, where 1e-5 of 1e6 would
+// put every patch's box around every other's.
+TEST(Accel, PatchBoxesFarFromTheOriginStayTight) {
+  const FlushToZeroScope flushToZero;
+  const Vec3 c(1e6, 1e6, 0.0);
+  std::vector<QuadricPatch> patches = spherePatches();
+  for (QuadricPatch& patch : patches) {
+    // |x − c|² − 1 and planes n·(x − c) >= 0.
+    patch.q = {1, 1, 1, 0, 0, 0, -2 * c.x(), -2 * c.y(), -2 * c.z(), c.squaredNorm() - 1.0};
+    for (int k = 0; k < patch.planeCount; ++k)
+      patch.planes[size_t(k)][3] = -patch.planes[size_t(k)].head<3>().dot(c);
+    patch.bounds.lo += c;
+    patch.bounds.hi += c;
+  }
+  Accel accel;
+  accel.addQuadricPatches(patches);
+  accel.commit();
+  const Bounds3 box = accel.bounds();
+  // The patches' own boxes reach 1e-3 beyond the sphere (the fixture's inflation).
+  EXPECT_LT(std::max((box.lo - (c - Vec3::Ones())).cwiseAbs().maxCoeff(),
+                     (box.hi - (c + Vec3::Ones())).cwiseAbs().maxCoeff()),
+            2e-3);
+  Pcg32 rng(3);
+  for (int i = 0; i < 500; ++i) {
+    const Vec3 d = uniformDirection(rng);
+    const RayHit hit = accel.intersect({c, d});
+    ASSERT_TRUE(hit.valid()) << d.transpose();
+    // The quadric's terms are 1e12 here and cancel: its roots are known to about 1e-4.
+    EXPECT_NEAR(hit.t, 1.0, 1e-3);
+  }
+}
+
 TEST(Accel, NearestOfTrianglesAndPatches) {
   // A unit sphere of patches cut by the plane z = 0.5 (two big triangles): rays from the
   // centre hit the plane first where it is nearer than the sphere, and the sphere elsewhere.

@@ -9,14 +9,20 @@ namespace {
 
 // Rays from far away at a closed convex object: a ray spawned from the hit towards the outside
 // must hit nothing, and one towards the inside must cross to the far side, well away from the
-// start. Repeated at scales 1e-3 … 1e4 and offset far from the origin.
-void expectNoSelfIntersection(const std::function<void(RenderScene&, double, const Vec3&)>& build) {
-  for (double scale : {1e-3, 1.0, 1e4}) {
-    const Vec3 centre = Vec3(3.0, -2.0, 1.5) * scale;
+// start. Repeated at scales 1e-3 … 1e4 with the object a few times its size from the origin,
+// and at scale 1 a million times its size away. The spawn offset stays within `maxOffset` times
+// the scale.
+void expectNoSelfIntersection(const std::function<void(RenderScene&, double, const Vec3&)>& build,
+                              double maxOffset) {
+  const std::pair<double, Vec3> placements[] = {{1e-3, Vec3(3.0, -2.0, 1.5) * 1e-3},
+                                                {1.0, Vec3(3.0, -2.0, 1.5)},
+                                                {1e4, Vec3(3.0, -2.0, 1.5) * 1e4},
+                                                {1.0, Vec3(1e6, -1e6, 5e5)}};
+  for (const auto& [scale, centre] : placements) {
     RenderScene scene;
     build(scene, scale, centre);
     scene.commit();
-    Pcg32 rng(uint64_t(scale * 1000) + 1);
+    Pcg32 rng(uint64_t(scale * 1000) + uint64_t(centre.norm()));
     int hits = 0;
     for (int i = 0; i < 4000; ++i) {
       const Vec3 dir = squareToUniformSphere(rng.next2D());
@@ -26,6 +32,7 @@ void expectNoSelfIntersection(const std::function<void(RenderScene&, double, con
       const auto si = scene.intersect(ray);
       if (!si) continue;
       ++hits;
+      ASSERT_LE(si->offset, maxOffset * scale) << "scale " << scale << " ray " << i;
       const Vec3 n = si->geometricNormal;
       Vec3 out = squareToCosineHemisphere(rng.next2D());
       Vec3 s, t;
@@ -41,43 +48,53 @@ void expectNoSelfIntersection(const std::function<void(RenderScene&, double, con
 }
 
 TEST(RenderScene, SpawnedRaysLeaveAnalyticSpheres) {
-  expectNoSelfIntersection([](RenderScene& scene, double scale, const Vec3& centre) {
-    scene.addSphere(centre, scale, Mat4::Identity(), false, diffuse(0.5), std::nullopt, "sphere");
-  });
+  expectNoSelfIntersection(
+      [](RenderScene& scene, double scale, const Vec3& centre) {
+        scene.addSphere(centre, scale, Mat4::Identity(), false, diffuse(0.5), std::nullopt,
+                        "sphere");
+      },
+      0.05);  // far from the origin the sphere's quadric rounds to about 1e-3 of its radius
 }
 
 TEST(RenderScene, SpawnedRaysLeaveTriangles) {
-  expectNoSelfIntersection([](RenderScene& scene, double scale, const Vec3& centre) {
-    ShapeParams params;
-    params.level = 3;
-    TriangleMesh mesh = makeBuiltin("icosphere", params).mesh;
-    for (Vec3& p : mesh.positions) p = centre + scale * p;
-    addMesh(scene, mesh, "flat", diffuse(0.5));
-  });
+  expectNoSelfIntersection(
+      [](RenderScene& scene, double scale, const Vec3& centre) {
+        ShapeParams params;
+        params.level = 3;
+        TriangleMesh mesh = makeBuiltin("icosphere", params).mesh;
+        for (Vec3& p : mesh.positions) p = centre + scale * p;
+        addMesh(scene, mesh, "flat", diffuse(0.5));
+      },
+      1e-4);
 }
 
 // Inside a box every wall sees every other: a shadow ray between two wall points is never
 // blocked, even when it grazes the target's wall near a shared edge.
+// Also a million times its size from the origin, where the room is traced relative to its centre.
 TEST(RenderScene, ShadowRaysInsideAConvexRoomAreNeverBlocked) {
-  RenderScene scene;
-  auto box = std::make_shared<TriangleMesh>(inwardBox(Vec3(-1, -0.7, -1.3), Vec3(1.1, 0.8, 0.9)));
-  addMesh(scene, *box, "flat", diffuse(0.5), Color::Ones());
-  scene.commit();
-  Pcg32 rng(3);
-  int tested = 0;
-  for (int i = 0; i < 20000; ++i) {
-    Ray ray;
-    ray.origin = Vec3(0.05, 0.05, -0.2);
-    ray.direction = squareToUniformSphere(rng.next2D());
-    const auto si = scene.intersect(ray);
-    ASSERT_TRUE(si);
-    const LightSampler::Choice choice = scene.lightSampler().choose(rng.nextDouble());
-    const auto ls = choice.light->sampleLi(si->p, rng.next2D());
-    if (!ls || ls->direction.dot(si->geometricNormal) <= 0.0) continue;
-    ++tested;
-    ASSERT_FALSE(scene.occluded(scene.spawnRayTo(*si, ls->point, ls->normal))) << "sample " << i;
+  for (const Vec3& shift : {Vec3::Zero().eval(), Vec3(1e6, 1e6, -1e6)}) {
+    RenderScene scene;
+    auto box = std::make_shared<TriangleMesh>(
+        inwardBox(shift + Vec3(-1, -0.7, -1.3), shift + Vec3(1.1, 0.8, 0.9)));
+    addMesh(scene, *box, "flat", diffuse(0.5), Color::Ones());
+    scene.commit();
+    Pcg32 rng(3);
+    int tested = 0;
+    for (int i = 0; i < 20000; ++i) {
+      Ray ray;
+      ray.origin = shift + Vec3(0.05, 0.05, -0.2);
+      ray.direction = squareToUniformSphere(rng.next2D());
+      const auto si = scene.intersect(ray);
+      ASSERT_TRUE(si);
+      const LightSampler::Choice choice = scene.lightSampler().choose(rng.nextDouble());
+      const auto ls = choice.light->sampleLi(si->p, rng.next2D());
+      if (!ls || ls->direction.dot(si->geometricNormal) <= 0.0) continue;
+      ++tested;
+      ASSERT_FALSE(scene.occluded(scene.spawnRayTo(*si, ls->point, ls->normal)))
+          << "sample " << i << " shifted by " << shift.transpose();
+    }
+    EXPECT_GT(tested, 10000);
   }
-  EXPECT_GT(tested, 10000);
 }
 
 TEST(RenderScene, ShadingNormalsFollowTheModel) {

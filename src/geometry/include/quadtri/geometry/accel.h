@@ -52,7 +52,8 @@ class Accel {
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;
 
-  /// Adds a triangle mesh (copied into float buffers); returns its geometry id.
+  /// Adds a triangle mesh (copied, handed to Embree as floats at commit); returns its geometry
+  /// id.
   uint32_t addTriangles(const TriangleMesh& mesh);
   /// Adds quadric patches as one Embree user geometry with a bound per patch; the patches are
   /// referenced, not copied, and must outlive the Accel. Given the `mesh` whose triangle t
@@ -104,8 +105,15 @@ class Accel {
   /// What tracing long patches as parts (addQuadricPatches) costs: the parts' records and
   /// Embree's share of each primitive beyond the patches. Zero where no patch was split.
   size_t patchPartBytes() const;
-  /// Bounds of everything added, as Embree holds it (floats, patch bounds slightly inflated).
+  /// Bounds of everything added, as Embree holds it (floats, patch bounds slightly inflated),
+  /// in world coordinates.
   Bounds3 bounds() const;
+  /// The point Embree's float coordinates are relative to (vertices, boxes, ray origins), chosen
+  /// at commit: the centre of everything added where that lies farther from the world origin
+  /// than 8 times its largest half-extent, so a scene far from the origin is traced as finely as
+  /// the same scene around it; otherwise the world origin. A point p is held to about 2^-24 of
+  /// the largest coordinate of p − origin().
+  Vec3 origin() const;
   bool robust() const;
 
  private:

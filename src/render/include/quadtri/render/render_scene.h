@@ -123,13 +123,15 @@ class RenderScene {
   LightSampler lightSampler_;
   std::optional<PerspectiveCamera> camera_;
   Bounds3 bounds_;
+  Vec3 origin_ = Vec3::Zero();  ///< accel_.origin(): float error is relative to it
   size_t primitives_ = 0;
   bool committed_ = false;
 };
 
 /// The offset that clears float error around a point of magnitude `magnitude` (the largest
-/// absolute coordinate involved): Embree stores vertices and ray origins as floats, so a hit
-/// is only known to about 2^-24·magnitude; the offset is 2^-19·magnitude (32 float ulps).
+/// coordinate involved, relative to Accel::origin()): Embree stores vertices and ray origins as
+/// floats, so a hit is only known to about 2^-24·magnitude; the offset is 2^-19·magnitude (32
+/// float ulps).
 inline double floatErrorOffset(double magnitude) {
   return 0x1.0p-19 * magnitude;
 }
