@@ -144,6 +144,15 @@ struct Accel::Impl {
     ++sceneGeometries[kind];
     return id;
   }
+  // Reserves the next id for a triangle geometry handed to Embree at commit.
+  uint32_t addPending(PendingTriangles pending, const Bounds3& box) {
+    pending.id = nextId++;
+    ++sceneGeometries[kNative];
+    added.extend(box);
+    bytes += (pending.positions.size() + pending.indices.size()) * sizeof(float);
+    pendingTriangles.push_back(std::move(pending));
+    return pendingTriangles.back().id;
+  }
   // Hands a pending triangle geometry to Embree, its vertices as floats relative to `origin`.
   void attachTriangles(PendingTriangles& pending) {
     const size_t vertexCount = pending.positions.size() / 3;
@@ -249,12 +258,7 @@ uint32_t Accel::addTriangles(const TriangleMesh& mesh) {
              t, c, v, mesh.positions.size());
       pending.indices[3 * t + size_t(c)] = v;
     }
-  pending.id = impl_->nextId++;
-  ++impl_->sceneGeometries[kNative];
-  impl_->added.extend(box);
-  impl_->pendingTriangles.push_back(std::move(pending));
-  impl_->bytes += (mesh.positions.size() + mesh.triangles.size()) * 3 * sizeof(float);
-  return impl_->pendingTriangles.back().id;
+  return impl_->addPending(std::move(pending), box);
 }
 
 uint32_t Accel::addQuadricPatches(const std::vector<QuadricPatch>& patches,
@@ -382,18 +386,20 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
   impl_->bytes +=
       pieces.size() * sizeof(BezierTriangle) + user->subPatches.size() * sizeof(BezierSubPatch);
   if (!user->flatPieces.empty()) {
-    TriangleMesh flat;
-    flat.positions.reserve(3 * user->flatPieces.size());
-    flat.triangles.reserve(user->flatPieces.size());
-    for (uint32_t p : user->flatPieces) {
-      const BezierTriangle& piece = pieces[p];
-      const uint32_t first = uint32_t(flat.positions.size());
-      flat.positions.push_back(piece.at(4, 0, 0));
-      flat.positions.push_back(piece.at(0, 4, 0));
-      flat.positions.push_back(piece.at(0, 0, 4));
-      flat.triangles.push_back({first, first + 1, first + 2});
+    // The corner triangles, straight into a pending geometry (the pieces were checked above).
+    Impl::PendingTriangles flat{0, std::vector<double>(9 * user->flatPieces.size()),
+                                largeVector<uint32_t>(3 * user->flatPieces.size())};
+    Bounds3 box;
+    for (size_t f = 0; f < user->flatPieces.size(); ++f) {
+      const BezierTriangle& piece = pieces[user->flatPieces[f]];
+      const Vec3 corners[3] = {piece.at(4, 0, 0), piece.at(0, 4, 0), piece.at(0, 0, 4)};
+      for (size_t k = 0; k < 3; ++k) {
+        for (int c = 0; c < 3; ++c) flat.positions[9 * f + 3 * k + size_t(c)] = corners[k][c];
+        flat.indices[3 * f + k] = uint32_t(3 * f + k);
+        box.extend(corners[k]);
+      }
     }
-    user->flatGeometry = addTriangles(flat);
+    user->flatGeometry = impl_->addPending(std::move(flat), box);
     if (impl_->flatOwner.size() <= user->flatGeometry)
       impl_->flatOwner.resize(user->flatGeometry + 1, nullptr);
     impl_->flatOwner[user->flatGeometry] = user.get();
@@ -406,8 +412,11 @@ uint32_t Accel::addBezierTriangles(const std::vector<BezierTriangle>& pieces) {
 void Accel::commit() {
   if (impl_->committed) return;
   impl_->origin = frameOrigin(impl_->added);
-  for (Impl::PendingTriangles& pending : impl_->pendingTriangles) impl_->attachTriangles(pending);
-  impl_->pendingTriangles.clear();
+  // Each one leaves the list once attached, so that a failure leaves only those not attached.
+  while (!impl_->pendingTriangles.empty()) {
+    impl_->attachTriangles(impl_->pendingTriangles.back());
+    impl_->pendingTriangles.pop_back();
+  }
   // The double ray differs from Embree's float copy by about 6e-8 of its coordinates relative
   // to the origin: boxes grow by 1e-5 of the geometry's extent from there.
   for (const auto& g : impl_->patchGeometries) {

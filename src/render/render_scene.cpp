@@ -288,13 +288,15 @@ Ray RenderScene::spawnRay(const SurfaceInteraction& si, const Vec3& direction) c
 }
 
 Ray RenderScene::spawnRayTo(const SurfaceInteraction& si, const Vec3& target,
-                            const Vec3& targetNormal) const {
+                            const Vec3& targetNormal, double targetError) const {
   // spawnRay only needs the direction's side of the two normals, not its length (+z for a
   // target at the point itself, as safeNormalized gives).
   const Vec3 toTarget = target - si.p;
   Ray ray = spawnRay(si, toTarget != Vec3::Zero() ? toTarget : Vec3(Vec3::UnitZ()));
   const double side = targetNormal.dot(ray.origin - target) >= 0.0 ? 1.0 : -1.0;
-  const Vec3 end = target + side * floatErrorOffset(maxAbs(target - origin_)) * targetNormal;
+  const Vec3 end = target + side *
+                                std::max(floatErrorOffset(maxAbs(target - origin_)), targetError) *
+                                targetNormal;
   const Vec3 toEnd = end - ray.origin;
   ray.direction = safeNormalized(toEnd, ray.tfar);
   return ray;

@@ -38,10 +38,12 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int depth
   constexpr double kScale = double(1 << BezierSubPatch::kMaxDepth);
   for (int c = 0; c < 3; ++c)
     s.cu[c] = uint16_t(cu[c] * kScale), s.cv[c] = uint16_t(cv[c] * kScale);
+  const Vec3& p0 = net.b[size_t(BezierTriangle::index(0, 0))];
   Bounds3 box;
   for (const Vec3& p : net.b) box.extend(p);
-  for (int c = 0; c < 3; ++c) s.lo[c] = floatDown(box.lo[c]), s.hi[c] = floatUp(box.hi[c]);
-  const Vec3& p0 = net.b[size_t(BezierTriangle::index(0, 0))];
+  // Relative to p0: floats keep the box as tight far from the origin as near it.
+  for (int c = 0; c < 3; ++c)
+    s.lo[c] = floatDown(box.lo[c] - p0[c]), s.hi[c] = floatUp(box.hi[c] - p0[c]);
   const Vec3 e1 = net.b[size_t(BezierTriangle::index(4, 0))] - p0;
   const Vec3 e2 = net.b[size_t(BezierTriangle::index(0, 4))] - p0;
   const Vec3 normal = e1.cross(e2);
@@ -111,8 +113,11 @@ BezierSubPatch makeSubPatch(const BezierTriangle& net, uint32_t piece, int depth
 
 Bounds3 BezierSubPatch::bounds() const {
   Bounds3 b;
-  b.lo = Vec3(lo[0], lo[1], lo[2]);
-  b.hi = Vec3(hi[0], hi[1], hi[2]);
+  b.lo = p0 + Vec3(lo[0], lo[1], lo[2]);
+  b.hi = p0 + Vec3(hi[0], hi[1], hi[2]);
+  // Grown by a few double ulps of the coordinates: the differences from p0 and the sums were
+  // rounded.
+  b.inflate(0x1.0p-50 * (b.lo.cwiseAbs().maxCoeff() + b.hi.cwiseAbs().maxCoeff()));
   return b;
 }
 

@@ -97,6 +97,40 @@ TEST(RenderScene, ShadowRaysInsideAConvexRoomAreNeverBlocked) {
   }
 }
 
+// A sphere light's samples lie on the exact sphere, the sphere the scene traces is a quadric in
+// world coordinates: a million units from the origin its terms cancel to about 1e-4, and a
+// shadow ray that stopped at float error short of the sample met the light itself (half of them
+// for radius 1). LightSample::pointError keeps them short of the traced surface.
+TEST(RenderScene, ShadowRaysReachASphereLightFarFromTheOrigin) {
+  for (const Vec3& shift : {Vec3::Zero().eval(), Vec3(1e6, -1e6, 5e5)})
+    for (const double radius : {1.0, 0.1}) {
+      RenderScene scene;
+      TriangleMesh floor;
+      floor.positions = {shift + Vec3(-5, -5, 0), shift + Vec3(5, -5, 0), shift + Vec3(5, 5, 0),
+                         shift + Vec3(-5, 5, 0)};
+      floor.triangles = {{0u, 1u, 2u}, {0u, 2u, 3u}};
+      addMesh(scene, floor, "flat", diffuse(0.5));
+      scene.addSphere(shift + Vec3(0, 0, 3), radius, Mat4::Identity(), false, diffuse(0.0),
+                      Color::Ones(), "light");
+      scene.commit();
+      Pcg32 rng(7);
+      int tested = 0;
+      for (int i = 0; i < 5000; ++i) {
+        const Vec2 xy = rng.next2D();
+        const auto si =
+            scene.intersect({shift + Vec3(4 * xy.x() - 2, 4 * xy.y() - 2, 1), Vec3(0, 0, -1)});
+        ASSERT_TRUE(si);
+        const auto ls =
+            scene.lightSampler().choose(rng.nextDouble()).light->sampleLi(si->p, rng.next2D());
+        if (!ls) continue;
+        ++tested;
+        ASSERT_FALSE(scene.occluded(scene.spawnRayTo(*si, ls->point, ls->normal, ls->pointError)))
+            << "sample " << i << ", radius " << radius << ", shifted by " << shift.transpose();
+      }
+      EXPECT_GT(tested, 4000);
+    }
+}
+
 TEST(RenderScene, ShadingNormalsFollowTheModel) {
   // One triangle with tilted corner normals: `shading` interpolates them barycentrically,
   // `flat` uses the face normal.

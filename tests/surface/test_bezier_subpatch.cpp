@@ -197,6 +197,33 @@ TEST(BezierSubPatch, BoxAndPrismHoldEveryPointOfTheRegion) {
   }
 }
 
+// The regions do not depend on where the pieces are: moved a million units, the same pieces
+// split into the same regions (their float boxes are relative to the corner p0, so they stay as
+// tight as at the origin, where world-coordinate floats snapped them to a 0.0625 grid and the
+// budget went on splitting regions whose boxes would not shrink), and each box still holds its
+// region.
+TEST(BezierSubPatch, RegionsAreTheSameFarFromTheOrigin) {
+  const std::vector<BezierTriangle> pieces = curvedPieces();
+  std::vector<BezierTriangle> moved = pieces;
+  const Vec3 offset(1e6, -1e6, 5e5);
+  for (BezierTriangle& piece : moved)
+    for (Vec3& b : piece.b) b += offset;
+  const std::vector<BezierSubPatch> near = bezierSubPatches(pieces);
+  const std::vector<BezierSubPatch> far = bezierSubPatches(moved);
+  ASSERT_EQ(near.size(), far.size());
+  for (size_t i = 0; i < near.size(); ++i) {
+    EXPECT_EQ(near[i].piece, far[i].piece) << i;
+    EXPECT_EQ(near[i].depth, far[i].depth) << i;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(near[i].cu[c], far[i].cu[c]) << i;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(near[i].cv[c], far[i].cv[c]) << i;
+    const Bounds3 a = near[i].bounds(), b = far[i].bounds();
+    EXPECT_LT(((b.hi - b.lo) - (a.hi - a.lo)).cwiseAbs().maxCoeff(), 1e-6) << i;
+    for (const Vec3& p : moved[far[i].piece].b)
+      if (far[i].depth == 0)
+        EXPECT_TRUE((p.array() >= b.lo.array()).all() && (p.array() <= b.hi.array()).all()) << i;
+  }
+}
+
 TEST(BezierSubPatch, ConeCertifiesOneSignOfTheProjectedJacobian) {
   const std::vector<BezierTriangle> pieces = curvedPieces();
   const std::vector<BezierSubPatch> subs = bezierSubPatches(pieces);

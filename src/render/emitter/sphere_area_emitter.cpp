@@ -19,6 +19,20 @@ SphereAreaEmitter::SphereAreaEmitter(const Vec3& center, double radius, bool fli
     fail("area emitter on a sphere: expected a finite centre and a positive radius");
 }
 
+namespace {
+
+// How far the sphere as the scene traces it (RenderScene::addSphere: a quadric in world
+// coordinates) may lie from its exact point x: 32 units of rounding of |x − c|² − r², whose
+// terms far from the origin reach |c|² and cancel, over the gradient's length 2r. The same bound
+// as the offset of a quadric hit (RenderScene::interactionOf).
+double tracedSurfaceError(const Vec3& c, double r, const Vec3& x) {
+  const Vec3 ax = x.cwiseAbs(), ac = c.cwiseAbs();
+  const double terms = ax.squaredNorm() + 2.0 * ac.dot(ax) + std::abs(c.squaredNorm() - r * r);
+  return 0x1.0p-48 * terms / (2.0 * r);
+}
+
+}  // namespace
+
 std::optional<LightSample> SphereAreaEmitter::sampleLi(const Vec3& ref, const Vec2& u) const {
   const SphereDirectionSample cap = sampleSphereCap(ref, center_, radius_, u);
   if (!(cap.pdf > 0.0) || !(cap.distance > 0.0)) return std::nullopt;
@@ -31,6 +45,7 @@ std::optional<LightSample> SphereAreaEmitter::sampleLi(const Vec3& ref, const Ve
   s.radiance = eval(normal, -s.direction);
   if (isBlack(s.radiance)) return std::nullopt;
   s.pdf = cap.pdf;
+  s.pointError = tracedSurfaceError(center_, radius_, s.point);
   return s;
 }
 

@@ -46,8 +46,9 @@ Color DirectIntegrator::radianceFrom(const RenderScene& scene, const Ray& ray,
     const Color f = bsdf.eval(wi, wo);
     if (isBlack(f)) continue;
     ++rays;
-    const Ray shadow = std::isinf(ls->distance) ? scene.spawnRay(*si, ls->direction)
-                                                : scene.spawnRayTo(*si, ls->point, ls->normal);
+    const Ray shadow = std::isinf(ls->distance)
+                           ? scene.spawnRay(*si, ls->direction)
+                           : scene.spawnRayTo(*si, ls->point, ls->normal, ls->pointError);
     if (scene.occluded(shadow)) continue;
     const double lightPdf = choice.probability * ls->pdf;
     const double weight = ls->delta ? 1.0 : powerHeuristic(ne, lightPdf, nb, bsdf.pdf(wi, wo));

@@ -75,7 +75,7 @@ Color PathIntegrator::radianceFrom(const RenderScene& scene, const Ray& cameraRa
         if (!isBlack(f)) {
           const Ray shadow = std::isinf(ls->distance)
                                  ? scene.spawnRay(*si, ls->direction)
-                                 : scene.spawnRayTo(*si, ls->point, ls->normal);
+                                 : scene.spawnRayTo(*si, ls->point, ls->normal, ls->pointError);
           ++rays;
           if (!scene.occluded(shadow)) {
             const double lightPdf = choice.probability * ls->pdf;

@@ -100,8 +100,10 @@ class RenderScene {
   Ray spawnRay(const SurfaceInteraction& si, const Vec3& direction) const;
   /// A shadow ray from `si` to `target` on a surface of unit normal `targetNormal` (zero for a
   /// point in space): the target too is pushed off its surface, towards the ray's side, by its
-  /// float error, so a grazing shadow ray cannot find the light's own surface before its end.
-  Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetNormal) const;
+  /// float error or by `targetError` where larger (LightSample::pointError), so a grazing
+  /// shadow ray cannot find the light's own surface before its end.
+  Ray spawnRayTo(const SurfaceInteraction& si, const Vec3& target, const Vec3& targetNormal,
+                 double targetError = 0.0) const;
 
   const PerspectiveCamera& camera() const;
   const LightSampler& lightSampler() const { return lightSampler_; }

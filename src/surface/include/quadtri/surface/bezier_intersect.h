@@ -111,7 +111,7 @@ struct BezierSubPatch {
   /// proves that none lies in it.
   float parentAxis[3] = {};
   float parentSinCone = 2.0f;
-  float lo[3] = {}, hi[3] = {};  ///< box of the region's control points
+  float lo[3] = {}, hi[3] = {};  ///< box of the region's control points, relative to p0 (bounds())
   /// The region's corners in the piece's (u, v), and its parent's (both the whole domain for
   /// the piece itself), in units of 2^-kMaxDepth: every corner a split makes is a dyadic
   /// fraction with at most kMaxDepth bits.

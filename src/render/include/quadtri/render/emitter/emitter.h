@@ -17,7 +17,10 @@ struct LightSample {
   double pdf = 0.0;            ///< solid-angle density at the reference point (1 for delta lights)
   Vec3 point;                  ///< on the light (meaningless for the environment)
   Vec3 normal = Vec3::Zero();  ///< unit geometric normal at `point`; zero for point lights
-  bool delta = false;          ///< a Dirac light: no BSDF sampling strategy can hit it
+  /// How far the light's surface as the scene traces it may lie from `point` along `normal`
+  /// (beyond float rounding): a shadow ray stops that far short of it (RenderScene::spawnRayTo).
+  double pointError = 0.0;
+  bool delta = false;  ///< a Dirac light: no BSDF sampling strategy can hit it
 };
 
 class Emitter {
