@@ -342,7 +342,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   std::vector<uint32_t> part(m.triangleCount(), 0);
   for (size_t p = 0; p < windings.parts.size(); ++p)
     for (uint32_t t : windings.parts[p]) part[t] = uint32_t(p);
-  std::vector<ConvexCell> cells = largeVector<ConvexCell>(m.triangleCount());
+  std::vector<CellSummary> cells = largeVector<CellSummary>(m.triangleCount());
   parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
     Frame& frame = frames_[t];
     QuadricPatch& patch = patches_[t];
@@ -405,7 +405,7 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   // each round halves the reach of the cells that do, and chooses their patches again.
   for (int round = 0; round < kOverlapRounds; ++round) {
     parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
-      if (redo[t]) choosePatch(t, fitted[t], pencils[t], reach[t], cells[t]);
+      if (redo[t]) cells[t] = chooseAndSummarise(t, fitted[t], pencils[t], reach[t]);
     });
     // The cores' boxes: only those of the patches chosen again change.
     parallelFor(size_t(0), m.triangleCount(), [&](size_t t) {
@@ -438,8 +438,24 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   setFallbacks(std::move(fallbacks));
 }
 
+RobustImplicitModel::CellSummary RobustImplicitModel::chooseAndSummarise(
+    size_t t, const QuadricCoeffs& fitted, const QuadricCoeffs& pencil, double reach) {
+  ConvexCell cell;
+  choosePatch(t, fitted, pencil, reach, cell);
+  CellSummary summary;
+  if (cell.empty()) return summary;
+  summary.tolerance = cell.tolerance;
+  summary.hasCell = true;
+  const QuadricPatch& patch = patches_[t];
+  if (patch.base != Vec4::Zero())
+    for (int k = 0; k < 3; ++k)
+      summary.faceBoxes[size_t(k)] =
+          betweenBoundsOnFace(patch.q, patch.orientation, patch.base, cell, k);
+  return summary;
+}
+
 void RobustImplicitModel::addBridges(const MeshTopology& topo,
-                                     const std::vector<ConvexCell>& cells) {
+                                     const std::vector<CellSummary>& cells) {
   const TriangleMesh& m = mesh();
   // Each edge's bridge box (empty: no bridge), found in parallel; the bridges are then
   // appended to the patches in edge order, into storage reserved for every edge at the start.
@@ -478,10 +494,8 @@ void RobustImplicitModel::addBridges(const MeshTopology& topo,
         (conic(a) - conic(b)).norm() < 1e-9)
       return;
     Bounds3 box;
-    if (a.base != Vec4::Zero())
-      box.extend(betweenBoundsOnFace(a.q, a.orientation, a.base, cells[ta], ka));
-    if (b.base != Vec4::Zero())
-      box.extend(betweenBoundsOnFace(b.q, b.orientation, b.base, cells[tb], kb));
+    box.extend(cells[ta].faceBoxes[ka]);
+    box.extend(cells[tb].faceBoxes[kb]);
     if (box.empty()) return;  // both sheets lie on their bases along this face
     box.inflate(1e-7 * std::max(m.meanEdgeLength(ta), m.meanEdgeLength(tb)) +
                 1e-10 * (length + o.norm()));

@@ -113,7 +113,20 @@ class RobustImplicitModel final : public SurfaceModel {
   void makeFlat(size_t t, double reach, ConvexCell& cell);
   void choosePatch(size_t t, const QuadricCoeffs& fitted, const QuadricCoeffs& pencil, double reach,
                    ConvexCell& cell);
-  void addBridges(const MeshTopology& topo, const std::vector<ConvexCell>& cells);
+  /// What the bridges need of a triangle's final cell, kept instead of the cell (656 bytes):
+  /// for each edge k, the box of the region between the patch and its base on the cell's face
+  /// k (betweenBoundsOnFace; empty without a base), and the cell's tolerance, from which its
+  /// core is built again.
+  struct CellSummary {
+    std::array<Bounds3, 3> faceBoxes;
+    double tolerance = 0.0;
+    bool hasCell = false;
+    bool empty() const { return !hasCell; }
+  };
+  /// Chooses triangle t's patch (choosePatch) and summarises its cell.
+  CellSummary chooseAndSummarise(size_t t, const QuadricCoeffs& fitted, const QuadricCoeffs& pencil,
+                                 double reach);
+  void addBridges(const MeshTopology& topo, const std::vector<CellSummary>& cells);
 
   /// One patch per triangle, then the bridges (one array: the renderer traces it whole).
   std::vector<QuadricPatch> patches_;
