@@ -205,44 +205,62 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<B
     if (!boxes[t].empty()) all.extend(boxes[t]);
   if (all.empty()) return out;
   using Key = std::array<int64_t, 3>;
-  const auto cellOf = [&](const Vec3& p) {
-    const Vec3 r = (p - all.lo) / spacing;
+  const auto cellAt = [&](const Vec3& p, double size) {
+    const Vec3 r = (p - all.lo) / size;
     return Key{int64_t(std::floor(r.x())), int64_t(std::floor(r.y())), int64_t(std::floor(r.z()))};
   };
-  // The grid as one sorted array of (grid cell, triangle) entries: each cell's triangles are a
-  // run of it, in increasing order.
+  const auto cellOf = [&](const Vec3& p) { return cellAt(p, spacing); };
+  // A box spanning more than 4096 cells of the mean edge's size is far larger than the mesh's
+  // triangles: it is shrunk, not put in the grid.
   std::vector<size_t> first(n + 1, 0);
   parallelFor(size_t(0), n, [&](size_t t) {
     if (boxes[t].empty()) return;
     const Key lo = cellOf(boxes[t].lo), hi = cellOf(boxes[t].hi);
     const int64_t size = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
-    if (size > 4096) {
-      out[t] = 1;  // a cell far larger than the mesh's triangles: shrink it
-      return;
-    }
-    first[t + 1] = size_t(size);
+    if (size > 4096) out[t] = 1;
+  });
+  // The grid as one sorted array of (grid cell, triangle) entries, each cell's index packed in
+  // 21 bits per axis, so that sorting compares integers: each cell's triangles are a run of
+  // it, in increasing order. Its cells are the mean edge's size, coarser only where the mesh
+  // spans more than 2^21 of them (which pairs are found does not depend on the cells' size:
+  // every pair of boxes that meet is found in the cell of their overlap's lower corner).
+  constexpr int64_t kAxisCells = int64_t(1) << 21;
+  const double gridSpacing =
+      std::max(spacing, (all.hi - all.lo).maxCoeff() / double(kAxisCells - 2));
+  const auto gridCell = [&](const Vec3& p) {
+    const Key k = cellAt(p, gridSpacing);
+    const auto clamp = [&](int64_t c) {
+      return uint64_t(std::clamp<int64_t>(c, 0, kAxisCells - 1));
+    };
+    return (clamp(k[0]) << 42) | (clamp(k[1]) << 21) | clamp(k[2]);
+  };
+  parallelFor(size_t(0), n, [&](size_t t) {
+    if (boxes[t].empty() || out[t]) return;
+    const Key lo = cellAt(boxes[t].lo, gridSpacing), hi = cellAt(boxes[t].hi, gridSpacing);
+    first[t + 1] = size_t((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1));
   });
   for (size_t t = 0; t < n; ++t) first[t + 1] += first[t];
   struct Entry {
-    Key key;
+    uint64_t key;
     uint32_t t;
     bool operator<(const Entry& o) const { return key != o.key ? key < o.key : t < o.t; }
   };
   std::vector<Entry> grid(first[n]);
   parallelFor(size_t(0), n, [&](size_t t) {
     if (first[t + 1] == first[t]) return;
-    const Key lo = cellOf(boxes[t].lo), hi = cellOf(boxes[t].hi);
+    const Key lo = cellAt(boxes[t].lo, gridSpacing), hi = cellAt(boxes[t].hi, gridSpacing);
     size_t i = first[t];
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (int64_t z = lo[2]; z <= hi[2]; ++z) grid[i++] = Entry{{x, y, z}, uint32_t(t)};
+        for (int64_t z = lo[2]; z <= hi[2]; ++z)
+          grid[i++] = Entry{(uint64_t(x) << 42) | (uint64_t(y) << 21) | uint64_t(z), uint32_t(t)};
   });
   parallelSort(grid.begin(), grid.end());
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (size_t begin = 0; begin < grid.size();) {
     size_t end = begin + 1;
     while (end < grid.size() && grid[end].key == grid[begin].key) ++end;
-    const Key& key = grid[begin].key;
+    const uint64_t key = grid[begin].key;
     for (size_t i = begin; i < end; ++i)
       for (size_t j = i + 1; j < end; ++j) {
         const uint32_t a = grid[i].t, b = grid[j].t;
@@ -256,7 +274,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<B
         if ((ba.hi.array() < bb.lo.array()).any() || (bb.hi.array() < ba.lo.array()).any())
           continue;
         // Test each pair once: in the grid cell of the overlap's lower corner.
-        if (cellOf(ba.lo.cwiseMax(bb.lo)) != key) continue;
+        if (gridCell(ba.lo.cwiseMax(bb.lo)) != key) continue;
         pairs.emplace_back(a, b);
       }
     begin = end;
@@ -527,17 +545,25 @@ SurfacePoint RobustImplicitModel::evaluate(size_t t, double u, double v) const {
 }
 
 Vec3 RobustImplicitModel::position(size_t t, double u, double v) const {
-  const Frame& frame = frames_[t];
-  const QuadricPatch& patch = patches_[t];
-  const QuadricCoeffs& q = patch.q;
+  return liftOnto(patches_[t].q, liftLine(t, u, v));
+}
+
+RobustImplicitModel::LiftLine RobustImplicitModel::liftLine(size_t t, double u, double v) const {
+  const TriangleMesh& m = mesh();
+  const QuadraticPatch parametric{{m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)},
+                                  frames_[t].controlPoints};
+  return liftLineOn(parametric, patches_[t], frames_[t], u, v);
+}
+
+RobustImplicitModel::LiftLine RobustImplicitModel::liftLineOn(const QuadraticPatch& parametric,
+                                                              const QuadricPatch& patch,
+                                                              const Frame& frame, double u,
+                                                              double v) {
   // Blend the edge planes and directions with weights that are 1 on their edge and 0 on the
   // others, so boundary points start in their edge plane, move inside it and land on the
   // clipped boundary. (Corners lie on all their planes: nothing moves there.)
   const double l[3] = {1.0 - u - v, u, v};
   const double wsum = l[0] * l[1] + l[1] * l[2] + l[2] * l[0];
-  const TriangleMesh& m = mesh();
-  const QuadraticPatch parametric{{m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)},
-                                  frame.controlPoints};
   Vec3 start = parametric.position(u, v);
   Vec3 dir = Vec3::Zero();
   if (wsum > 0.0) {
@@ -551,7 +577,23 @@ Vec3 RobustImplicitModel::position(size_t t, double u, double v) const {
       dir += wk * frame.edgeDirection[k];
     }
   }
-  dir = safeNormalized(dir, frame.faceNormal);
+  return {start, safeNormalized(dir, frame.faceNormal)};
+}
+
+void RobustImplicitModel::heightLattice(size_t t, HeightLattice& lattice) const {
+  const TriangleMesh& m = mesh();
+  const QuadraticPatch parametric{{m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)},
+                                  frames_[t].controlPoints};
+  size_t at = 0;
+  for (int j = 0; j <= kHeightSamples; ++j)
+    for (int i = 0; i + j <= kHeightSamples; ++i)
+      lattice[at++] = liftLineOn(parametric, patches_[t], frames_[t], double(i) / kHeightSamples,
+                                 double(j) / kHeightSamples);
+}
+
+Vec3 RobustImplicitModel::liftOnto(const QuadricCoeffs& q, const LiftLine& line) {
+  const Vec3& start = line.start;
+  const Vec3& dir = line.dir;
   const double a = q[0] * dir.x() * dir.x() + q[1] * dir.y() * dir.y() + q[2] * dir.z() * dir.z() +
                    q[3] * dir.x() * dir.y() + q[4] * dir.x() * dir.z() + q[5] * dir.y() * dir.z();
   const double b = quadricGradient(q, start).dot(dir);

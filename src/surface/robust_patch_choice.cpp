@@ -12,9 +12,6 @@
 namespace quadtri {
 namespace {
 
-// Samples per edge of the lattice that sizes the slab and the box.
-constexpr int kBoundSamples = 12;
-
 // Blends of the corner normals towards the face normal tried before the flat plane.
 constexpr double kBlends[] = {0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.95};
 
@@ -103,8 +100,8 @@ bool crossesCreaseBridge(const QuadricPatch& patch, const std::array<bool, 3>& c
 
 }  // namespace
 
-bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double reach,
-                                     ConvexCell& cell) {
+bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, const HeightLattice& lattice,
+                                     double reach, ConvexCell& cell) {
   const TriangleMesh& m = mesh();
   Frame& frame = frames_[t];
   QuadricPatch& patch = patches_[t];
@@ -121,12 +118,11 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, double re
 
   // Heights of the patch over its triangle, sampled.
   double hmin = 0.0, hmax = 0.0;
-  for (int j = 0; j <= kBoundSamples; ++j)
-    for (int i = 0; i + j <= kBoundSamples; ++i) {
-      const Vec3 p = position(t, double(i) / kBoundSamples, double(j) / kBoundSamples);
-      hmin = std::min(hmin, n.dot(p - centre));
-      hmax = std::max(hmax, n.dot(p - centre));
-    }
+  for (const LiftLine& line : lattice) {
+    const Vec3 p = liftOnto(q, line);
+    hmin = std::min(hmin, n.dot(p - centre));
+    hmax = std::max(hmax, n.dot(p - centre));
+  }
   // No farther from the triangle than a share of its least altitude: fits to normals that no
   // surface near the triangle has (averaged across a sharp edge, on a sliver) bulge far out,
   // into other parts of the mesh.
@@ -326,6 +322,8 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
       return error;
     };
     const double scale = m.meanEdgeLength(t);
+    HeightLattice lattice;
+    heightLattice(t, lattice);
     // A candidate, then members of its pencil: its graph member, then, with `square` given,
     // q + μ·(G/ℓ)·L² around both, the one found left in `square`. L² keeps the corners and, in
     // exact arithmetic, their gradients; a member whose corner normals come out worse by more
@@ -334,10 +332,10 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
     enum class Found { None, Candidate, Square };
     const auto tryPencil = [&](const QuadricCoeffs& q, const QuadricCoeffs& squareOfPlane,
                                QuadricCoeffs* square) {
-      if (tryQuadric(t, q, reach, cell)) return Found::Candidate;
+      if (tryQuadric(t, q, lattice, reach, cell)) return Found::Candidate;
       const double error = cornerError(q) + 1e-6;
       const auto keep = [&](const QuadricCoeffs& member) {
-        return cornerError(member) <= error && tryQuadric(t, member, reach, cell);
+        return cornerError(member) <= error && tryQuadric(t, member, lattice, reach, cell);
       };
       QuadricCoeffs graph = q;
       const bool hasGraph = graphMember(squareOfPlane, n, graph);
@@ -354,7 +352,7 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
       // lift sheets the fit's own checks let rise further (a stray-sheet bound of its own).
       const double squareReach = std::min(reach, kMaxSquareRise * scale);
       const auto keepSquare = [&](const QuadricCoeffs& member) {
-        return cornerError(member) <= error && tryQuadric(t, member, squareReach, cell);
+        return cornerError(member) <= error && tryQuadric(t, member, lattice, squareReach, cell);
       };
       for (double step : kSquareSteps) {
         if (addSquare(q, squareOfPlane, step * unitFit, *square) && keepSquare(*square))
@@ -389,7 +387,7 @@ void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
       break;
     }
     if (found == Found::Square &&
-        tryQuadric(t, square, std::min(reach, kMaxSquareRise * m.meanEdgeLength(t)), cell))
+        tryQuadric(t, square, lattice, std::min(reach, kMaxSquareRise * m.meanEdgeLength(t)), cell))
       return finish(0.0);
   }
   makeFlat(t, reach, cell);

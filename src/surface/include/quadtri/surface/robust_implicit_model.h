@@ -106,10 +106,27 @@ class RobustImplicitModel final : public SurfaceModel {
     double coreLo = 0.0, coreHi = 0.0, reach = 0.0;
     bool flat = false;  ///< fell back to the triangle's plane (see the class comment)
   };
+  /// position(t, u, v) in two steps: the line through f_p(u, v), moved into the edge planes,
+  /// along which it is projected (it depends on the triangle only), then the point where that
+  /// line meets q.
+  struct LiftLine {
+    Vec3 start, dir;
+  };
+  LiftLine liftLine(size_t t, double u, double v) const;
+  static LiftLine liftLineOn(const QuadraticPatch& parametric, const QuadricPatch& patch,
+                             const Frame& frame, double u, double v);
+  static Vec3 liftOnto(const QuadricCoeffs& q, const LiftLine& line);
+  /// Samples per edge of the lattice of lines along which a candidate's heights over its
+  /// triangle are sampled, and the lines themselves, built once per triangle for all of its
+  /// candidates.
+  static constexpr int kHeightSamples = 12;
+  using HeightLattice = std::array<LiftLine, (kHeightSamples + 1) * (kHeightSamples + 2) / 2>;
+  void heightLattice(size_t t, HeightLattice& lattice) const;
   /// Makes q patch t's quadric if its cell passes the checks of the class comment (and it
   /// covers the triangle); fills `cell` and the patch's slab, orientation and bounds.
   /// `reach` caps how far the patch may reach from the triangle's plane.
-  bool tryQuadric(size_t t, const QuadricCoeffs& q, double reach, ConvexCell& cell);
+  bool tryQuadric(size_t t, const QuadricCoeffs& q, const HeightLattice& lattice, double reach,
+                  ConvexCell& cell);
   void makeFlat(size_t t, double reach, ConvexCell& cell);
   void choosePatch(size_t t, const QuadricCoeffs& fitted, const QuadricCoeffs& pencil, double reach,
                    ConvexCell& cell);
