@@ -19,16 +19,6 @@ double maxAbs(const Vec3& v) {
   return v.cwiseAbs().maxCoeff();
 }
 
-// The sum of the absolute values of q's terms at p: what rounding in evaluating q(p) is relative
-// to. Far from the world origin the terms are large and cancel, and a root is known only to
-// about 2^-52 of this sum over the gradient's length.
-double quadricTermScale(const QuadricCoeffs& q, const Vec3& p) {
-  const double x = std::abs(p.x()), y = std::abs(p.y()), z = std::abs(p.z());
-  return std::abs(q[0]) * x * x + std::abs(q[1]) * y * y + std::abs(q[2]) * z * z +
-         std::abs(q[3]) * x * y + std::abs(q[4]) * x * z + std::abs(q[5]) * y * z +
-         std::abs(q[6]) * x + std::abs(q[7]) * y + std::abs(q[8]) * z + std::abs(q[9]);
-}
-
 // Coefficients A..J of the quadric xᵀ Q x = 0 for a symmetric 4×4 Q over (x, y, z, 1).
 QuadricCoeffs coeffsFromMatrix(const Mat4& q) {
   return {q(0, 0),     q(1, 1),     q(2, 2),     2 * q(0, 1), 2 * q(0, 2),
@@ -245,7 +235,7 @@ std::optional<SurfaceInteraction> RenderScene::interactionOf(const Ray& ray,
     si.offset =
         std::max(floatErrorOffset(std::max({maxAbs(p - origin_), maxAbs(patch.bounds.lo - origin_),
                                             maxAbs(patch.bounds.hi - origin_)})),
-                 g.squaredNorm() > 0.0 ? 0x1.0p-48 * quadricTermScale(patch.q, p) / g.norm() : 0.0);
+                 quadricRootError(patch.q, p, g.norm()));
     si.liftedP = p;
     return si;
   }

@@ -4,6 +4,7 @@
 
 #include "quadtri/math/error.h"
 #include "quadtri/render/sampling/warp.h"
+#include "quadtri/surface/quadric_patch.h"
 
 namespace quadtri {
 
@@ -22,13 +23,12 @@ SphereAreaEmitter::SphereAreaEmitter(const Vec3& center, double radius, bool fli
 namespace {
 
 // How far the sphere as the scene traces it (RenderScene::addSphere: a quadric in world
-// coordinates) may lie from its exact point x: 32 units of rounding of |x − c|² − r², whose
-// terms far from the origin reach |c|² and cancel, over the gradient's length 2r. The same bound
-// as the offset of a quadric hit (RenderScene::interactionOf).
+// coordinates) may lie from its exact point x: the bound RenderScene::interactionOf offsets a
+// quadric hit by, for |x − c|² − r², whose gradient at x has length 2r.
 double tracedSurfaceError(const Vec3& c, double r, const Vec3& x) {
-  const Vec3 ax = x.cwiseAbs(), ac = c.cwiseAbs();
-  const double terms = ax.squaredNorm() + 2.0 * ac.dot(ax) + std::abs(c.squaredNorm() - r * r);
-  return 0x1.0p-48 * terms / (2.0 * r);
+  const QuadricCoeffs sphere = {1, 1,          1,          0,          0,
+                                0, -2 * c.x(), -2 * c.y(), -2 * c.z(), c.squaredNorm() - r * r};
+  return quadricRootError(sphere, x, 2.0 * r);
 }
 
 }  // namespace

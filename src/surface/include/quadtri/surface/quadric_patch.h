@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,20 @@ inline Vec3 quadricGradient(const QuadricCoeffs& q, const Vec3& p) {
   const double x = p.x(), y = p.y(), z = p.z();
   return Vec3(2 * q[0] * x + q[3] * y + q[4] * z + q[6], 2 * q[1] * y + q[3] * x + q[5] * z + q[7],
               2 * q[2] * z + q[4] * x + q[5] * y + q[8]);
+}
+/// How far the zero set of q, as evaluated in double precision, may lie from the exact one at a
+/// point p of it where |∇q| = gradientLength: 32 units of rounding (2⁻⁴⁸) of the sum of the
+/// absolute values of q's terms at p, over the gradient's length. Far from the world origin
+/// the terms are large and cancel, so this grows with |p|² where the patch's own size does not;
+/// 0 where the gradient vanishes.
+inline double quadricRootError(const QuadricCoeffs& q, const Vec3& p, double gradientLength) {
+  if (!(gradientLength > 0.0)) return 0.0;
+  const double x = std::abs(p.x()), y = std::abs(p.y()), z = std::abs(p.z());
+  const double terms = std::abs(q[0]) * x * x + std::abs(q[1]) * y * y + std::abs(q[2]) * z * z +
+                       std::abs(q[3]) * x * y + std::abs(q[4]) * x * z + std::abs(q[5]) * y * z +
+                       std::abs(q[6]) * x + std::abs(q[7]) * y + std::abs(q[8]) * z +
+                       std::abs(q[9]);
+  return 0x1.0p-48 * terms / gradientLength;
 }
 /// The symmetric M of q's quadratic part: A x² + ... + F yz = xᵀ M x.
 Mat3 quadraticPart(const QuadricCoeffs& q);
