@@ -69,11 +69,11 @@ struct ObjCorners {
 /// Reads an OBJ file natively (any bytes are safe; its result is meant for a file that
 /// validateObj accepts, inspectMeshBytes, which may run at the same time), when it holds
 /// only what this reader gives as Assimp does: v lines of three numbers, vn, vt, faces of
-/// three corners, every one with a normal or none, s lines, blank lines and comments at the
-/// start of a line. Numbers take the syntax Assimp's parser takes and are read as the nearest
-/// doubles (std::from_chars), where Assimp keeps floats. Returns
-/// nullopt for anything else (objects, groups, materials, polygons, lines, homogeneous or
-/// coloured vertices, ...), which Assimp then reads. `text` must end in a NUL (std::string's).
+/// three corners, every one with a normal or none, s lines, blank lines and comments (from a
+/// `#` to the end of its line). Numbers take the syntax Assimp's parser takes and are read as the
+/// nearest doubles (std::from_chars), where Assimp keeps floats. Returns nullopt for anything else
+/// (objects, groups, materials, polygons, lines, homogeneous or coloured vertices, ...), which
+/// Assimp then reads. `text` must end in a NUL (std::string's).
 std::optional<ObjCorners> readPlainObj(std::string_view text);
 
 /// An ASCII OFF file's header (off_reader.cpp): [ST][C][N]OFF, optional, then the vertex and

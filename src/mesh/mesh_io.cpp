@@ -226,6 +226,23 @@ TriangleMesh weldParts(const std::string& name, const std::vector<Part>& parts,
   return mesh;
 }
 
+// An OBJ file's bytes with every comment ('#' to the end of its line) turned into spaces:
+// Assimp's importer reads a comment after a face's indices as one more index and refuses the
+// file, where the check (and the native reader) read it as a comment.
+std::string withoutObjComments(const std::string& bytes) {
+  std::string out = bytes;
+  bool comment = false;
+  for (char& c : out) {
+    if (c == '\n') {
+      comment = false;
+    } else if (c == '#' || comment) {
+      comment = c != '\r';
+      if (comment) c = ' ';
+    }
+  }
+  return out;
+}
+
 // Reads the file's bytes with Assimp (its OBJ, PLY and STL importers; OFF only when asked for,
 // MeshReader::Assimp).
 TriangleMesh loadWithAssimp(const std::string& name, const std::string& ext,
@@ -367,7 +384,10 @@ TriangleMesh loadMeshWith(MeshReader reader, const std::filesystem::path& path,
              body.firstEmptyFaceLine);
       digest = FileDigest::of(bytes);
     }
-    mesh = loadWithAssimp(name, ext, plyText.empty() ? bytes : plyText);
+    mesh = loadWithAssimp(name, ext,
+                          ext == ".obj"     ? withoutObjComments(bytes)
+                          : plyText.empty() ? bytes
+                                            : plyText);
     significandBits = 24;
   }
   if (mesh.triangles.empty()) fail("{}: the file holds no triangles", name);

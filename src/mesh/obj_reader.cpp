@@ -90,10 +90,15 @@ std::optional<ObjCorners> readPlainObj(std::string_view text) {
     std::string_view line = text.substr(next, newline - next);
     next = newline + 1;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (line.empty() || line[0] == '#') continue;
-    // Comments after values, other control characters and indented lines: left to Assimp.
+    // A comment runs from '#' to the end of the line, after values too (as the check reads it).
+    if (const size_t hash = line.find('#'); hash != std::string_view::npos) {
+      line = line.substr(0, hash);
+      while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    }
+    if (line.empty()) continue;
+    // Other control characters and indented lines: left to Assimp.
     for (const char c : line)
-      if (c == '#' || c == '\r' || c == '\v' || c == '\f' || c == '\0') return std::nullopt;
+      if (c == '\r' || c == '\v' || c == '\f' || c == '\0') return std::nullopt;
     if (line[0] == ' ' || line[0] == '\t') {
       if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
       return std::nullopt;
