@@ -309,8 +309,10 @@ RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> mes
   std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m, topo);
 
   // Room for a bridge per edge too (addBridges), so that appending them never moves the
-  // patches; pages of it that stay unused are never touched, so never resident.
-  reserveLarge(patches_, m.triangleCount() + topo.edges.size());
+  // patches; only the patches' part is mapped now, and addBridges maps what its bridges fill,
+  // so the room of edges without a bridge (every edge, on data from a quadric) is never
+  // resident.
+  reserveLarge(patches_, m.triangleCount() + topo.edges.size(), m.triangleCount());
   patches_.resize(m.triangleCount());
   resizeLarge(frames_, m.triangleCount());
   std::vector<QuadricCoeffs> pencils = largeVector<QuadricCoeffs>(m.triangleCount());
@@ -526,6 +528,9 @@ void RobustImplicitModel::addBridges(const MeshTopology& topo,
                 1e-10 * (length + o.norm()));
     boxes[i] = box;
   });
+  size_t bridges = 0;
+  for (const Bounds3& box : boxes) bridges += !box.empty();
+  prefaultLarge(patches_.data() + patches_.size(), bridges * sizeof(QuadricPatch));
   for (size_t i = 0; i < boxes.size(); ++i) {
     if (boxes[i].empty()) continue;
     const auto [ta, ka] = topo.edges[i].sides[0];

@@ -12,6 +12,7 @@
 // few bytes.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
@@ -61,14 +62,17 @@ inline void prefaultLarge(void* data, size_t bytes) {
 }
 
 /// v.reserve(n) for a vector-like container; a new allocation of a large array asks for huge
-/// pages before anything is written to it (the elements v held are then moved there).
+/// pages before anything is written to it (the elements v held are then moved there). The
+/// pages of the first `mapped` elements (all n by default) are mapped on every thread
+/// (prefaultLarge); the rest, room that may stay unused, only where it is written (its writer
+/// may call prefaultLarge on the part it is about to fill).
 template <class Vector>
-void reserveLarge(Vector& v, size_t n) {
+void reserveLarge(Vector& v, size_t n, size_t mapped = SIZE_MAX) {
   if (n <= v.capacity()) return;
   if (v.empty()) {
     v.reserve(n);
     adviseHugePages(v.data(), n * sizeof(typename Vector::value_type));
-    prefaultLarge(v.data(), n * sizeof(typename Vector::value_type));
+    prefaultLarge(v.data(), std::min(n, mapped) * sizeof(typename Vector::value_type));
     return;
   }
   Vector fresh;
