@@ -65,7 +65,8 @@ Action addRenderCommand(CLI::App& app) {
   CLI::Option* checkpointOption = sub->add_option(
       "--checkpoint", opt->checkpoint,
       "Every SECONDS, save the finished pixels to FIRST_OUTPUT.state (and when stopped early), "
-      "for --resume; removed once the image is complete");
+      "for --resume; removed once the image is complete (as is FIRST_OUTPUT.state when "
+      "--resume read it)");
   sub->add_option("--resume", opt->resume,
                   "Resume the render saved in STATE (by --checkpoint): only the pixels it lacks "
                   "are rendered; refused unless the scene, options, seed and version match")
@@ -206,10 +207,14 @@ Action addRenderCommand(CLI::App& app) {
         fmt::print(stderr, "warning: {}: {} non-finite values written as 0\n", out, replaced);
       fmt::print("wrote {}\n", out);
     }
-    if (checkpointGiven && result.stats.unfinishedPixels == 0) {
-      std::error_code ignored;
+    // A complete image needs no state: the one its checkpoints saved, or the one it resumed
+    // when that is this output's own (FIRST_OUTPUT.state), which would otherwise be resumed
+    // again by the next --resume.
+    std::error_code ignored;
+    const bool resumedOwnState =
+        !opt->resume.empty() && std::filesystem::equivalent(opt->resume, statePath, ignored);
+    if ((checkpointGiven || resumedOwnState) && result.stats.unfinishedPixels == 0)
       std::filesystem::remove(statePath, ignored);
-    }
     // The model checks left for after the image (deferModelChecks), once the images and the
     // state are safe (a second signal meanwhile loses nothing), and without the acceleration
     // structure, whose memory their buffers then take instead of adding to the peak.
