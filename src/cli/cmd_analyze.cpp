@@ -32,7 +32,7 @@ Action addAnalyzeCommand(CLI::App& app) {
   sub->add_flag("--csv", opt->csv, "Print CSV: a header of the JSON keys, one row per model");
   sub->add_option("--lines", opt->analysis.crack.lines, "Random lines for the crack rate")
       ->capture_default_str()
-      ->check(wholeNumber());
+      ->check(positiveWholeNumber());
   sub->add_option("--seed", opt->analysis.crack.seed, "Seed of the crack-rate lines")
       ->capture_default_str()
       ->check(wholeNumber());
@@ -56,7 +56,6 @@ Action addAnalyzeCommand(CLI::App& app) {
     if (opt->heatmapWidth < 100 || opt->heatmapWidth > 10000)
       fail("--heatmap-width {}: expected 100 to 10000 pixels", opt->heatmapWidth);
     opt->analysis.tessellation = Tessellation::parse(opt->tessellation);
-    if (opt->analysis.crack.lines == 0) fail("--lines: expected a positive number of lines");
     const std::vector<std::string> names =
         opt->model == "all" ? modelNames() : std::vector<std::string>{opt->model};
     // The mesh and the dearest of its models (built one at a time, traced for the crack rate;

@@ -36,7 +36,7 @@ Action addReproduceCommand(CLI::App& app) {
   sub->add_option("--lines", opt->reproduce.lines,
                   "Random lines per crack rate of the every-model measurements")
       ->capture_default_str()
-      ->check(wholeNumber());
+      ->check(positiveWholeNumber());
   sub->add_option("--levels", opt->reproduce.levels,
                   "Refinement levels 0..L of the convergence study")
       ->capture_default_str();
@@ -45,7 +45,6 @@ Action addReproduceCommand(CLI::App& app) {
                 "images/convergence.png)");
   sub->add_flag("-q,--quiet", opt->quiet, "No progress lines on stderr");
   return [opt]() {
-    if (opt->reproduce.lines == 0) fail("--lines: expected a positive number of lines");
     if (opt->reproduce.levels < 0) fail("--levels {}: expected 0 or more", opt->reproduce.levels);
     if (opt->reproduce.threads < 0) fail("--threads expects a positive number");
     ReproduceOptions options = opt->reproduce;

@@ -40,7 +40,7 @@ Action addStudyCommand(CLI::App& app) {
                  "Seed of the crack-rate lines (default 1)");
   sub->add_option("--lines", opt->analysis.crack.lines, "Random lines per crack rate")
       ->capture_default_str()
-      ->check(wholeNumber());
+      ->check(positiveWholeNumber());
   addNormalFlags(sub, opt->normals,
                  "Vertex normals: file (as given; angle-weighted and split at --crease-angle when "
                  "missing), average (thesis eq. 2.8) or angle (angle-weighted, split at "
@@ -51,7 +51,6 @@ Action addStudyCommand(CLI::App& app) {
   sub->add_flag("-q,--quiet", opt->quiet, "No progress lines on stderr");
   return [opt]() {
     namespace fs = std::filesystem;
-    if (opt->analysis.crack.lines == 0) fail("--lines: expected a positive number of lines");
     const RenderSettings settings = opt->flags.settings();
     StudyOptions options;
     options.models = opt->flags.models();

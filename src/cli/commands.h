@@ -38,6 +38,21 @@ inline CLI::Validator wholeNumber() {
       "UINT");
 }
 
+/// wholeNumber, and not 0 (a count that must be positive, such as --lines).
+inline CLI::Validator positiveWholeNumber() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        const size_t start = value.find_first_not_of(" \t");
+        const size_t end = value.find_last_not_of(" \t");
+        const bool zero =
+            start != std::string::npos && value.find_first_not_of('0', start) > end;  // only zeros
+        if (start != std::string::npos && (value[start] == '-' || zero))
+          return "expected a whole number, 1 or more, got " + value;
+        return {};
+      },
+      "UINT");
+}
+
 /// Adds `--max-memory BYTES|NNG|NNM` to a subcommand; the returned function gives the limit in
 /// bytes once parsed (default: kDefaultMemoryShare of physicalMemoryBytes(), memory_limit.h).
 std::function<uint64_t()> addMaxMemoryOption(CLI::App& sub);

@@ -70,7 +70,12 @@ TEST(CliRenderFlags, MistakesAreRefusedBeforeAnyWorkInOneVoice) {
   // render, not 2^64 lines or a long render.)
   const std::string missing = (dir / "missing.obj").string();
   EXPECT_EQ(errorOf({"analyze", missing, "--lines", "-5"}, dir, "a1"),
-            "--lines: expected a whole number, 0 or more, got -5");
+            "--lines: expected a whole number, 1 or more, got -5");
+  // A count that must be positive says so for a sign and for 0 alike.
+  EXPECT_EQ(errorOf({"analyze", missing, "--lines", "0"}, dir, "a2"),
+            "--lines: expected a whole number, 1 or more, got 0");
+  EXPECT_EQ(errorOf({"study", "--lines", "00", "-o", (dir / "s").string(), missing}, dir, "s1"),
+            "--lines: expected a whole number, 1 or more, got 00");
   EXPECT_EQ(
       errorOf({"render", scene, "-o", out, "-D", "res=8", "--spp", "1", "--seed", "-1"}, dir, "r1"),
       "--seed: expected a whole number, 0 or more, got -1");
