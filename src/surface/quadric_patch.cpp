@@ -4,6 +4,18 @@
 
 namespace quadtri {
 
+QuadricCoeffs translatedQuadric(const QuadricCoeffs& q, const Vec3& o) {
+  const Mat3 M = quadraticPart(q);
+  const Vec3 g(q[6], q[7], q[8]);
+  const Vec3 linear = g - 2.0 * (M * o);
+  QuadricCoeffs out = q;
+  out[6] = linear.x();
+  out[7] = linear.y();
+  out[8] = linear.z();
+  out[9] = q[9] + (o.dot(M * o) - g.dot(o));
+  return out;
+}
+
 Mat3 quadraticPart(const QuadricCoeffs& q) {
   Mat3 m;
   m << q[0], 0.5 * q[3], 0.5 * q[4], 0.5 * q[3], q[1], 0.5 * q[5], 0.5 * q[4], 0.5 * q[5], q[2];

@@ -300,10 +300,74 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<B
 
 }  // namespace
 
+namespace {
+
+// Where the construction works: the centre of the mesh's box when that box lies more than 8 of
+// its half extents from the world origin (as the acceleration structure chooses its origin),
+// else the world origin. Far from it the quadrics' terms grow with the square of the distance
+// and cancel, and the construction's checks, solves and moves along pencils lose what the
+// patch's own size needs (a mesh a unit across at 10^3: corners off by 2e-4 edge lengths; at
+// 10^5 a fifth of the patches fell back to planes).
+Vec3 constructionOrigin(const TriangleMesh& mesh) {
+  const Bounds3 box = mesh.bounds();
+  if (box.empty()) return Vec3::Zero();
+  const Vec3 centre = 0.5 * (box.lo + box.hi);
+  const double half = 0.5 * (box.hi - box.lo).maxCoeff();
+  const double far = centre.cwiseAbs().maxCoeff();
+  if (!std::isfinite(far) || !(far > 8.0 * half)) return Vec3::Zero();
+  return centre;
+}
+
+// The plane n·(x − o) + d ≥ 0 as n·x + d' ≥ 0 (a plane and its exact negation stay exact
+// negations).
+Vec4 translatedPlane(const Vec4& plane, const Vec3& o) {
+  if (plane == Vec4::Zero()) return plane;
+  return Vec4(plane[0], plane[1], plane[2], plane[3] - plane.head<3>().dot(o));
+}
+
+}  // namespace
+
 RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> meshIn)
     : SurfaceModel(std::move(meshIn)) {
-  const TriangleMesh& m = mesh();
-  const MeshTopology& topo = m.topology();
+  // Far from the world origin the construction runs on the mesh moved by −origin, and its
+  // results are moved back once it is done (translateToWorld).
+  const Vec3 origin = constructionOrigin(mesh());
+  TriangleMesh moved;
+  if (origin != Vec3::Zero()) {
+    moved.positions.resize(mesh().positions.size());
+    parallelFor(size_t(0), moved.positions.size(),
+                [&](size_t i) { moved.positions[i] = mesh().positions[i] - origin; });
+    moved.triangles = mesh().triangles;
+    moved.normals = mesh().normals;
+    moved.normalIndices = mesh().normalIndices;
+    construction_ = &moved;
+    worldOrigin_ = origin;
+  }
+  construct(mesh().topology());
+  construction_ = nullptr;
+  worldOrigin_ = Vec3::Zero();
+  if (origin != Vec3::Zero()) translateToWorld(origin);
+}
+
+void RobustImplicitModel::translateToWorld(const Vec3& origin) {
+  parallelFor(size_t(0), patches_.size(), [&](size_t i) {
+    QuadricPatch& patch = patches_[i];
+    patch.q = translatedQuadric(patch.q, origin);
+    for (int k = 0; k < patch.planeCount; ++k)
+      patch.planes[size_t(k)] = translatedPlane(patch.planes[size_t(k)], origin);
+    patch.base = translatedPlane(patch.base, origin);
+    if (!patch.bounds.empty()) {
+      patch.bounds.lo += origin;
+      patch.bounds.hi += origin;
+    }
+  });
+  parallelFor(size_t(0), frames_.size(), [&](size_t t) {
+    for (Vec3& b : frames_[t].controlPoints) b += origin;
+  });
+}
+
+void RobustImplicitModel::construct(const MeshTopology& topo) {
+  const TriangleMesh& m = geometry();
   std::vector<SharedEdge> edges(topo.edges.size());
   parallelFor(size_t(0), edges.size(), [&](size_t i) { edges[i] = sharedEdge(m, topo.edges[i]); });
   std::vector<std::array<Vec3, 3>> controlPoints = edgeControlPoints(m, topo);
@@ -483,7 +547,7 @@ RobustImplicitModel::CellSummary RobustImplicitModel::chooseAndSummarise(
 
 void RobustImplicitModel::addBridges(const MeshTopology& topo,
                                      const std::vector<CellSummary>& cells) {
-  const TriangleMesh& m = mesh();
+  const TriangleMesh& m = geometry();
   // Each edge's bridge box (empty: no bridge), found in parallel; the bridges are then
   // appended to the patches in edge order, into storage reserved for every edge at the start.
   std::vector<Bounds3> boxes = largeVector<Bounds3>(topo.edges.size());
@@ -593,7 +657,7 @@ RobustImplicitModel::LiftLine RobustImplicitModel::liftLineOn(const QuadraticPat
 }
 
 void RobustImplicitModel::heightLattice(size_t t, HeightLattice& lattice) const {
-  const TriangleMesh& m = mesh();
+  const TriangleMesh& m = geometry();
   const QuadraticPatch parametric{{m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)},
                                   frames_[t].controlPoints};
   size_t at = 0;

@@ -61,6 +61,12 @@ bool addSquare(const QuadricCoeffs& q, const QuadricCoeffs& pencil, double lambd
 constexpr double kMaxRise = 0.5;
 constexpr double kMaxArcRise = 2.0;
 
+// A mesh far from the world origin is built near it and its patches moved back
+// (RobustImplicitModel::translateToWorld), where their coefficients are rounded in world
+// coordinates: a quadric whose corners that rounding moves by more than this share of a mean
+// edge is not kept (its triangle then falls back, to its plane at last, which moves exactly).
+constexpr double kStoredCornerTolerance = 1e-3;
+
 // A sliver's cell is capped at a corner sharper than kCapBelowDeg whose two edge planes meet in
 // a line within asin(0.5) = 30° of the triangle's plane; the cap lies kCapOffset mean edges
 // beyond the corner.
@@ -102,13 +108,21 @@ bool crossesCreaseBridge(const QuadricPatch& patch, const std::array<bool, 3>& c
 
 bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, const HeightLattice& lattice,
                                      double reach, ConvexCell& cell) {
-  const TriangleMesh& m = mesh();
+  const TriangleMesh& m = geometry();
   Frame& frame = frames_[t];
   QuadricPatch& patch = patches_[t];
   const Vec3& n = frame.faceNormal;
   double facing = 0.0;
   for (int k = 0; k < 3; ++k) facing += quadricGradient(q, m.corner(t, k)).dot(n);
   if (!(std::abs(facing) > 0.0) || !std::isfinite(facing)) return false;
+  if (worldOrigin_ != Vec3::Zero()) {
+    const QuadricCoeffs stored = translatedQuadric(q, worldOrigin_);
+    for (int k = 0; k < 3; ++k)
+      if (!(quadricRootError(stored, m.corner(t, k) + worldOrigin_,
+                             quadricGradient(q, m.corner(t, k)).norm()) <=
+            kStoredCornerTolerance * m.meanEdgeLength(t)))
+        return false;
+  }
   patch.q = q;
   patch.orientation = facing < 0.0 ? -1.0 : 1.0;
   const Vec3 centre = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
@@ -245,7 +259,7 @@ bool RobustImplicitModel::tryQuadric(size_t t, const QuadricCoeffs& q, const Hei
 }
 
 void RobustImplicitModel::makeFlat(size_t t, double reach, ConvexCell& cell) {
-  const TriangleMesh& m = mesh();
+  const TriangleMesh& m = geometry();
   Frame& frame = frames_[t];
   QuadricPatch& patch = patches_[t];
   const Vec3& n = frame.faceNormal;
@@ -291,7 +305,7 @@ void RobustImplicitModel::makeFlat(size_t t, double reach, ConvexCell& cell) {
 
 void RobustImplicitModel::choosePatch(size_t t, const QuadricCoeffs& fitted,
                                       const QuadricCoeffs& pencil, double reach, ConvexCell& cell) {
-  const TriangleMesh& m = mesh();
+  const TriangleMesh& m = geometry();
   Frame& frame = frames_[t];
   const Vec3& n = frame.faceNormal;
   frame.flat = false;

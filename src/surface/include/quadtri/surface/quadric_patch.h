@@ -38,6 +38,9 @@ inline double quadricRootError(const QuadricCoeffs& q, const Vec3& p, double gra
                        std::abs(q[9]);
   return 0x1.0p-48 * terms / gradientLength;
 }
+/// q(x − o) as a quadric in x (q moved by o): the quadratic part is unchanged, the linear
+/// part gains −2M·o and the constant oᵀMo − g·o.
+QuadricCoeffs translatedQuadric(const QuadricCoeffs& q, const Vec3& o);
 /// The symmetric M of q's quadratic part: A x² + ... + F yz = xᵀ M x.
 Mat3 quadraticPart(const QuadricCoeffs& q);
 

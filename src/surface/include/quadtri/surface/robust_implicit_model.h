@@ -145,6 +145,18 @@ class RobustImplicitModel final : public SurfaceModel {
                                  double reach);
   void addBridges(const MeshTopology& topo, const std::vector<CellSummary>& cells);
 
+  /// The construction (the constructor's work), on geometry().
+  void construct(const MeshTopology& topo);
+  /// Moves every patch, bridge and frame built on a mesh moved by −origin back to the world.
+  void translateToWorld(const Vec3& origin);
+  /// The mesh the construction works on: mesh() moved to near the origin where it lies far
+  /// from it (the constructor's constructionOrigin), else mesh() itself. After the
+  /// construction, mesh().
+  const TriangleMesh& geometry() const { return construction_ ? *construction_ : mesh(); }
+  const TriangleMesh* construction_ = nullptr;
+  /// Where geometry()'s origin lies in the world during the construction (zero otherwise).
+  Vec3 worldOrigin_ = Vec3::Zero();
+
   /// One patch per triangle, then the bridges (one array: the renderer traces it whole).
   std::vector<QuadricPatch> patches_;
   std::vector<Frame> frames_;
