@@ -50,7 +50,7 @@ Action addConvertCommand(CLI::App& app) {
     // The mesh and its model must fit in --max-memory, checked before either is built.
     MemoryBudget budget;
     budget.maxBytes = maxMemory();
-    const std::filesystem::path extension = std::filesystem::path(opt->output).extension();
+    const std::string extension = conversionExtension(opt->output);
     const bool writesPatches = extension == ".json" || extension == ".qtp";
     // An OBJ/PLY surface is charged as it is written: streamed (saveTessellation).
     const ModelUse use = writesPatches ? ModelUse::ConvertJson : ModelUse::ConvertMeshStreamed;

@@ -1,6 +1,7 @@
 #include "quadtri/surface/convert_output.h"
 
 #include <algorithm>
+#include <cctype>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -239,9 +240,15 @@ void writePatchTable(const SurfaceModel& model, const Tessellation& tessellation
   writeRecords(out, info.bridgeCount, bridge, bridges);
 }
 
+std::string conversionExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 size_t writeConversion(const SurfaceModel& model, const Tessellation& tessellation,
                        const std::filesystem::path& path) {
-  const std::string ext = path.extension().string();
+  const std::string ext = conversionExtension(path);
   if (ext == ".json") {
     writeStreamAtomically(
         path, [&](std::ostream& out) { writeConversionJson(model, tessellation, out); });

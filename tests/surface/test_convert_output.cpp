@@ -92,13 +92,28 @@ TEST_F(ConvertOutput, RobustJsonWritesAnEmptyBridgesArrayOnASphere) {
 
 TEST_F(ConvertOutput, MeshFilesHoldTheWeldedTessellation) {
   const auto model = makeModel("quadric-edges", mesh);
-  for (const char* ext : {".obj", ".ply"}) {
+  // Extensions in any case, as the mesh readers and `quadtri mesh` take them.
+  for (const char* ext : {".obj", ".ply", ".OBJ", ".Ply"}) {
     const auto path = dir / (std::string("ico") + ext);
     EXPECT_EQ(writeConversion(*model, Tessellation{Tessellation::Kind::Lattice, 3}, path), 20u * 9);
     const TriangleMesh back = loadMesh(path);
     EXPECT_EQ(back.triangleCount(), 20u * 9) << ext;
     // 12 vertices, 30 edges with 2 points each, 1 interior point per patch.
     EXPECT_EQ(back.positions.size(), 12u + 30u * 2 + 20u) << ext;
+  }
+}
+
+TEST_F(ConvertOutput, PatchFilesTakeTheirExtensionInAnyCase) {
+  const auto model = makeModel("quadric-param", mesh);
+  const auto bytes = [](const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const auto& [upper, lower] : {std::pair{"ico.JSON", "ico.json"}, {"ico.Qtp", "ico.qtp"}}) {
+    writeConversion(*model, Tessellation{}, dir / upper);
+    writeConversion(*model, Tessellation{}, dir / lower);
+    EXPECT_FALSE(bytes(dir / lower).empty()) << lower;
+    EXPECT_EQ(bytes(dir / upper), bytes(dir / lower)) << upper;
   }
 }
 

@@ -43,6 +43,10 @@ PackedRecords packedBridges(const SurfaceModel& model);
 void writeConversionJson(const SurfaceModel& model, const Tessellation& tessellation,
                          std::ostream& out);
 
+/// The extension of a conversion's output path, lower case (".PLY" writes a PLY file): what
+/// writeConversion dispatches on.
+std::string conversionExtension(const std::filesystem::path& path);
+
 /// Writes the conversion by the file's extension: .obj or .ply get the tessellated surface
 /// (the input triangles for InputTriangles models), .json gets conversionJson (written as a
 /// stream, writeConversionJson), .qtp the binary patch table (writePatchTable, patch_table.h).
