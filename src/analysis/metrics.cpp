@@ -227,9 +227,15 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
     m.c1AngleSmoothDeg = c->c1AngleSmoothDeg;
     m.g1EdgeShare = c->g1EdgeShare;
   }
-  if (topology.isClosed())
-    m.crackRate = crackRate(geometry, options.crack);
-  else
+  if (topology.isClosed()) {
+    // The acceleration structure's refusals (a coordinate beyond what Embree traces) name the
+    // vertex, not the mesh: say which.
+    try {
+      m.crackRate = crackRate(geometry, options.crack);
+    } catch (const Error& e) {
+      fail("{}: crack rate of {}: {}", meshName, m.model, e.what());
+    }
+  } else
     m.crackRateUndefined = crackRateUndefinedReason(topology);
   if (truth) m.truthDistance = truthDistance(model, *truth, options.truthLevel);
   return m;

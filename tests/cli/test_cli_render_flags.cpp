@@ -71,6 +71,15 @@ TEST(CliRenderFlags, MistakesAreRefusedBeforeAnyWorkInOneVoice) {
   const std::string missing = (dir / "missing.obj").string();
   EXPECT_EQ(errorOf({"analyze", missing, "--lines", "-5"}, dir, "a1"),
             "--lines: expected a whole number, 1 or more, got -5");
+  // A mesh beyond what Embree traces: the crack rate's refusal names the file and the model.
+  {
+    const fs::path huge = dir / "huge.obj";
+    std::ofstream(huge) << "v 0 0 0\nv 1e200 0 0\nv 0 1e200 0\nv 0 0 1e200\n"
+                           "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+    const std::string message = errorOf({"analyze", huge.string(), "--model", "flat"}, dir, "a3");
+    EXPECT_EQ(message.rfind(huge.string() + ": crack rate of flat: ", 0), 0u) << message;
+    EXPECT_NE(message.find("vertex 1 has a coordinate of 1e+200"), std::string::npos) << message;
+  }
   // A count that must be positive says so for a sign and for 0 alike.
   EXPECT_EQ(errorOf({"analyze", missing, "--lines", "0"}, dir, "a2"),
             "--lines: expected a whole number, 1 or more, got 0");
