@@ -220,19 +220,27 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<B
     if (size > 4096) out[t] = 1;
   });
   // The grid as one sorted array of (grid cell, triangle) entries, each cell's index packed in
-  // 21 bits per axis, so that sorting compares integers: each cell's triangles are a run of
-  // it, in increasing order. Its cells are the mean edge's size, coarser only where the mesh
-  // spans more than 2^21 of them (which pairs are found does not depend on the cells' size:
-  // every pair of boxes that meet is found in the cell of their overlap's lower corner).
-  constexpr int64_t kAxisCells = int64_t(1) << 21;
+  // 42 bits per axis of one 128-bit integer, so that sorting compares integers: each cell's
+  // triangles are a run of it, in increasing order. Its cells are the mean edge's size, coarser
+  // only where the mesh spans more than 2^42 of them (which pairs are found does not depend on
+  // the cells' size: every pair of boxes that meet is found in the cell of their overlap's lower
+  // corner; but cells coarser than the triangles would hold many, and the pairs within a cell
+  // are tested two by two, so 21 bits, which a mesh with one stray triangle far away exceeds,
+  // were too few).
+  __extension__ typedef unsigned __int128 CellKey;
+  constexpr int kAxisBits = 42;
+  constexpr int64_t kAxisCells = int64_t(1) << kAxisBits;
   const double gridSpacing =
       std::max(spacing, (all.hi - all.lo).maxCoeff() / double(kAxisCells - 2));
+  const auto pack = [](int64_t x, int64_t y, int64_t z) {
+    const auto clamp = [](int64_t c) {
+      return CellKey(uint64_t(std::clamp<int64_t>(c, 0, kAxisCells - 1)));
+    };
+    return (clamp(x) << (2 * kAxisBits)) | (clamp(y) << kAxisBits) | clamp(z);
+  };
   const auto gridCell = [&](const Vec3& p) {
     const Key k = cellAt(p, gridSpacing);
-    const auto clamp = [&](int64_t c) {
-      return uint64_t(std::clamp<int64_t>(c, 0, kAxisCells - 1));
-    };
-    return (clamp(k[0]) << 42) | (clamp(k[1]) << 21) | clamp(k[2]);
+    return pack(k[0], k[1], k[2]);
   };
   parallelFor(size_t(0), n, [&](size_t t) {
     if (boxes[t].empty() || out[t]) return;
@@ -241,7 +249,7 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<B
   });
   for (size_t t = 0; t < n; ++t) first[t + 1] += first[t];
   struct Entry {
-    uint64_t key;
+    CellKey key;
     uint32_t t;
     bool operator<(const Entry& o) const { return key != o.key ? key < o.key : t < o.t; }
   };
@@ -252,15 +260,14 @@ std::vector<char> overlappingCells(const TriangleMesh& mesh, const std::vector<B
     size_t i = first[t];
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (int64_t z = lo[2]; z <= hi[2]; ++z)
-          grid[i++] = Entry{(uint64_t(x) << 42) | (uint64_t(y) << 21) | uint64_t(z), uint32_t(t)};
+        for (int64_t z = lo[2]; z <= hi[2]; ++z) grid[i++] = Entry{pack(x, y, z), uint32_t(t)};
   });
   parallelSort(grid.begin(), grid.end());
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (size_t begin = 0; begin < grid.size();) {
     size_t end = begin + 1;
     while (end < grid.size() && grid[end].key == grid[begin].key) ++end;
-    const uint64_t key = grid[begin].key;
+    const CellKey key = grid[begin].key;
     for (size_t i = begin; i < end; ++i)
       for (size_t j = i + 1; j < end; ++j) {
         const uint32_t a = grid[i].t, b = grid[j].t;
@@ -356,10 +363,15 @@ void RobustImplicitModel::translateToWorld(const Vec3& origin) {
     for (int k = 0; k < patch.planeCount; ++k)
       patch.planes[size_t(k)] = translatedPlane(patch.planes[size_t(k)], origin);
     patch.base = translatedPlane(patch.base, origin);
-    if (!patch.bounds.empty()) {
-      patch.bounds.lo += origin;
-      patch.bounds.hi += origin;
-    }
+    if (patch.bounds.empty()) return;
+    patch.bounds.lo += origin;
+    patch.bounds.hi += origin;
+    // The boxes clip the surface exactly (the ray test checks its roots against them), so they
+    // take the margin of world coordinates that the construction gives a box (1e-10 of the
+    // distance from the origin it saw, near 0 here), or a patch thin along an axis rejects its
+    // own hits, rounded to world coordinates.
+    patch.bounds.inflate(1e-10 * std::max(patch.bounds.lo.cwiseAbs().maxCoeff(),
+                                          patch.bounds.hi.cwiseAbs().maxCoeff()));
   });
   parallelFor(size_t(0), frames_.size(), [&](size_t t) {
     for (Vec3& b : frames_[t].controlPoints) b += origin;
