@@ -12,6 +12,7 @@
 
 #include "accel_callbacks.h"
 #include "quadtri/math/error.h"
+#include "quadtri/math/frame_origin.h"
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 
@@ -51,20 +52,6 @@ RTCDevice sharedDevice() {
 
 // Native triangles and user geometry are two Embree scenes (Accel::Impl::scenes).
 enum SceneKind { kNative = 0, kUser = 1 };
-
-// The point Embree's float coordinates are relative to (Accel::origin): the centre of the box
-// of everything added where that box lies far from the world origin, more than 8 times its
-// largest half-extent along some axis, so that every coordinate Embree sees is at most a seventh
-// of the point's largest world coordinate (and float rounding, relative to that, is 7 times
-// finer or more); otherwise the world origin, whose float grid is finer near 0 than near any
-// other point. Up to 1e15 from the world origin, so that coordinates within
-// Accel::kLargestCoordinate stay within Embree's range once moved.
-Vec3 frameOrigin(const Bounds3& b) {
-  if (b.empty()) return Vec3::Zero();
-  const Vec3 centre = 0.5 * (b.lo + b.hi);
-  const double half = 0.5 * (b.hi - b.lo).maxCoeff(), far = centre.cwiseAbs().maxCoeff();
-  return far > 8.0 * half && far <= 1e15 ? centre : Vec3::Zero();
-}
 
 // The largest coordinate of b relative to `frame`.
 double extentFrom(const Bounds3& b, const Vec3& frame) {

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "quadtri/math/frame_origin.h"
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/mesh/topology.h"
@@ -175,26 +176,6 @@ constexpr double kAlignBelowDeg = 1e-6;
 // Rounds of shrinking overlapping cells (each halves their reach).
 constexpr int kOverlapRounds = 8;
 
-}  // namespace
-
-namespace {
-
-// Where the construction works: the centre of the mesh's box when that box lies more than 8 of
-// its half extents from the world origin (as the acceleration structure chooses its origin),
-// else the world origin. Far from it the quadrics' terms grow with the square of the distance
-// and cancel, and the construction's checks, solves and moves along pencils lose what the
-// patch's own size needs (a mesh a unit across at 10^3: corners off by 2e-4 edge lengths; at
-// 10^5 a fifth of the patches fell back to planes).
-Vec3 constructionOrigin(const TriangleMesh& mesh) {
-  const Bounds3 box = mesh.bounds();
-  if (box.empty()) return Vec3::Zero();
-  const Vec3 centre = 0.5 * (box.lo + box.hi);
-  const double half = 0.5 * (box.hi - box.lo).maxCoeff();
-  const double far = centre.cwiseAbs().maxCoeff();
-  if (!std::isfinite(far) || !(far > 8.0 * half)) return Vec3::Zero();
-  return centre;
-}
-
 // The plane n·(x − o) + d ≥ 0 as n·x + d' ≥ 0 (a plane and its exact negation stay exact
 // negations).
 Vec4 translatedPlane(const Vec4& plane, const Vec3& o) {
@@ -206,9 +187,12 @@ Vec4 translatedPlane(const Vec4& plane, const Vec3& o) {
 
 RobustImplicitModel::RobustImplicitModel(std::shared_ptr<const TriangleMesh> meshIn)
     : SurfaceModel(std::move(meshIn)) {
-  // Far from the world origin the construction runs on the mesh moved by −origin, and its
-  // results are moved back once it is done (translateToWorld).
-  const Vec3 origin = constructionOrigin(mesh());
+  // Far from the world origin (frameOrigin) the construction runs on the mesh moved by
+  // −origin, and its results are moved back once it is done (translateToWorld): there the
+  // quadrics' terms grow with the square of the distance and cancel, and the construction's
+  // checks, solves and moves along pencils lost what the patch's own size needs (a mesh a unit
+  // across at 10^3: corners off by 9e-3 of an edge; at 10^5 a fifth of the patches planes).
+  const Vec3 origin = frameOrigin(mesh().bounds());
   TriangleMesh moved;
   if (origin != Vec3::Zero()) {
     moved.positions.resize(mesh().positions.size());

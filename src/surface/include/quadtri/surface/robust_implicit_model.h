@@ -150,7 +150,7 @@ class RobustImplicitModel final : public SurfaceModel {
   /// Moves every patch, bridge and frame built on a mesh moved by −origin back to the world.
   void translateToWorld(const Vec3& origin);
   /// The mesh the construction works on: mesh() moved to near the origin where it lies far
-  /// from it (the constructor's constructionOrigin), else mesh() itself. After the
+  /// from it (frameOrigin of its box), else mesh() itself. After the
   /// construction, mesh().
   const TriangleMesh& geometry() const { return construction_ ? *construction_ : mesh(); }
   const TriangleMesh* construction_ = nullptr;
