@@ -60,30 +60,41 @@ void planeBasis(const Vec4& plane, Vec3& u, Vec3& w) {
   orthonormalBasis(plane.head<3>().normalized(), u, w);
 }
 
-// Points of face f's conic where dir·x is extremal along the conic (the conic's gradient in
-// the face is parallel to dir's projection onto the face).
-template <typename Visit>
-void conicExtremes(const QuadricCoeffs& q, const Vec4& plane, const Vec3& o, const Vec3& dir,
-                   const Visit& visit) {
-  Vec3 u, w;
-  planeBasis(plane, u, w);
-  const Mat3 M = quadraticPart(q);
-  const Vec3 g = quadricGradient(q, o);
-  // Q(s, r) = A s² + B s r + C r² + D s + E r + F on o + s u + r w.
-  const double A = u.dot(M * u), B = 2.0 * u.dot(M * w), C = w.dot(M * w);
-  const double D = g.dot(u), E = g.dot(w);
-  const double alpha = u.dot(dir), beta = w.dot(dir);
-  if (!(std::abs(alpha) + std::abs(beta) > 1e-12)) return;  // dir is normal to the face
-  // ∇Q × (α, β) = 0: L1 s + L2 r + L0 = 0.
-  const double L1 = 2.0 * A * beta - B * alpha, L2 = B * beta - 2.0 * C * alpha;
-  const double L0 = D * beta - E * alpha;
-  const double norm2 = L1 * L1 + L2 * L2;
-  const double size = std::abs(A) + std::abs(B) + std::abs(C);
-  if (!(norm2 > 1e-24 * size * size) || !(norm2 > 0.0)) return;
-  const Vec3 start = o - (L0 / norm2) * (L1 * u + L2 * w);
-  const Vec3 along = (-L2 * u + L1 * w) / std::sqrt(norm2);
-  lineZeros(q, start, along, [&](const Vec3& p, double) { visit(p); });
-}
+// The conic in which q meets a plane, as Q(s, r) = A s² + B s r + C r² + D s + E r + F on
+// o + s u + r w, (u, w) an orthonormal basis of the plane: computed once per face, whatever the
+// number of directions its extremes are asked along.
+struct FaceConic {
+  Vec3 o, u, w;
+  double A, B, C, D, E;
+
+  FaceConic(const QuadricCoeffs& q, const Vec4& plane, const Vec3& origin) : o(origin) {
+    planeBasis(plane, u, w);
+    const Mat3 M = quadraticPart(q);
+    const Vec3 g = quadricGradient(q, o);
+    A = u.dot(M * u);
+    B = 2.0 * u.dot(M * w);
+    C = w.dot(M * w);
+    D = g.dot(u);
+    E = g.dot(w);
+  }
+
+  // Points of the conic where dir·x is extremal along it (the conic's gradient in the face is
+  // parallel to dir's projection onto the face).
+  template <typename Visit>
+  void extremes(const QuadricCoeffs& q, const Vec3& dir, const Visit& visit) const {
+    const double alpha = u.dot(dir), beta = w.dot(dir);
+    if (!(std::abs(alpha) + std::abs(beta) > 1e-12)) return;  // dir is normal to the face
+    // ∇Q × (α, β) = 0: L1 s + L2 r + L0 = 0.
+    const double L1 = 2.0 * A * beta - B * alpha, L2 = B * beta - 2.0 * C * alpha;
+    const double L0 = D * beta - E * alpha;
+    const double norm2 = L1 * L1 + L2 * L2;
+    const double size = std::abs(A) + std::abs(B) + std::abs(C);
+    if (!(norm2 > 1e-24 * size * size) || !(norm2 > 0.0)) return;
+    const Vec3 start = o - (L0 / norm2) * (L1 * u + L2 * w);
+    const Vec3 along = (-L2 * u + L1 * w) / std::sqrt(norm2);
+    lineZeros(q, start, along, [&](const Vec3& p, double) { visit(p); });
+  }
+};
 
 // The polygon edges of face f (consecutive vertex pairs).
 template <typename Visit>
@@ -237,12 +248,26 @@ void extremeCandidates(const QuadricCoeffs& q, const ConvexCell& cell, std::span
     if (cell.contains(p)) visit(p);
   };
   if (cell.empty()) return;
-  for (size_t f = 0; f < cell.faces.size(); ++f)
-    faceEdges(cell, int(f), [&](const Vec3& a, const Vec3& b) { segmentZeros(q, a, b, keep); });
+  // Each edge of the cell is a side of two faces: its zeros are found once, from the first.
+  constexpr size_t kVertices = ConvexCell::kMaxVertices;
+  std::array<uint64_t, (kVertices * kVertices + 63) / 64> seen{};
+  for (size_t f = 0; f < cell.faces.size(); ++f) {
+    const ConvexCell::Face& face = cell.faces[f];
+    for (size_t i = 0; i < face.size(); ++i) {
+      const size_t a = size_t(face[i]), b = size_t(face[(i + 1) % face.size()]);
+      const size_t pair = std::min(a, b) * kVertices + std::max(a, b);
+      uint64_t& word = seen[pair / 64];
+      const uint64_t bit = uint64_t(1) << (pair % 64);
+      if (word & bit) continue;
+      word |= bit;
+      segmentZeros(q, cell.vertices[a], cell.vertices[b], keep);
+    }
+  }
   for (size_t f = 0; f < cell.faces.size(); ++f) {
     if (cell.faces[f].empty()) continue;
     const Vec3 o = faceCentre(cell, int(f));
-    for (const Vec3& dir : dirs) conicExtremes(q, cell.planes[f], o, dir, keep);
+    const FaceConic conic(q, cell.planes[f], o);
+    for (const Vec3& dir : dirs) conic.extremes(q, dir, keep);
   }
   // Inside: the gradient 2Mx + g has no component along the two directions normal to dir.
   const Mat3 M = quadraticPart(q);
@@ -307,9 +332,8 @@ Bounds3 betweenBoundsOnFace(const QuadricCoeffs& q, double sign, const Vec4& bas
     if ((va <= 0.0) != (vb <= 0.0) && va != vb) keep(a + (va / (va - vb)) * (b - a));
     if (va == 0.0) keep(a);
   });
-  const Vec3 o = faceCentre(cell, f);
-  for (int axis = 0; axis < 3; ++axis)
-    conicExtremes(q, cell.planes[size_t(f)], o, Vec3::Unit(axis), keep);
+  const FaceConic conic(q, cell.planes[size_t(f)], faceCentre(cell, f));
+  for (int axis = 0; axis < 3; ++axis) conic.extremes(q, Vec3::Unit(axis), keep);
   return box;
 }
 
