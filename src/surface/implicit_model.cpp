@@ -5,6 +5,7 @@
 #include "quadtri/surface/implicit_fit.h"
 #include "quadtri/surface/local_patches.h"
 #include "quadtri/surface/patch_record.h"
+#include "quadtri/surface/quadric_patch_parts.h"
 
 namespace quadtri {
 namespace {
@@ -115,7 +116,10 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
         if (p && patch.inside(*p)) box.extend(*p);
       }
     box.inflate(kBoundMargin * reach);
+    // The box above defines how far the patch reaches; its exact bounds within it are what
+    // Embree is given, so that rays near a neighbour's surface do not test this patch too.
     patch.bounds = box;
+    patch.bounds = tightPatchBounds(patch);
   });
   setFallbacks(std::move(fallbacks));
 }

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <span>
 
 #include "quadtri/math/fixed_vector.h"
 #include "quadtri/math/float_round.h"
@@ -158,6 +159,62 @@ Bounds3 quadricBoundsInBox(const QuadricCoeffs& q, const Bounds3& box) {
   tight.lo = tight.lo.cwiseMax(box.lo);
   tight.hi = tight.hi.cwiseMin(box.hi);
   return tight;
+}
+
+namespace {
+
+// True where {x : n_i·x + d_i >= 0} is bounded whatever the d_i: no direction r != 0 has
+// n_i·r >= 0 for every i. Such a direction, where one exists, can be taken on the line where two
+// of the planes' normals are both orthogonal to it (an extreme ray of the recession cone, or its
+// lineality), so the pairs' cross products are the only candidates. Directions within rounding
+// of the cone count as in it.
+bool boundedWhateverTheOffsets(std::span<const Vec4> planes) {
+  bool anyPair = false;
+  for (size_t i = 0; i < planes.size(); ++i)
+    for (size_t j = i + 1; j < planes.size(); ++j) {
+      const Vec3 r = planes[i].head<3>().cross(planes[j].head<3>());
+      const double length = r.norm();
+      if (!(length > 1e-9)) continue;
+      anyPair = true;
+      for (const double sign : {1.0, -1.0}) {
+        bool inCone = true;
+        for (const Vec4& plane : planes)
+          inCone = inCone && sign * plane.head<3>().dot(r) >= -1e-9 * length;
+        if (inCone) return false;
+      }
+    }
+  return anyPair;
+}
+
+}  // namespace
+
+Bounds3 tightPatchBounds(const QuadricPatch& patch) {
+  const Bounds3& box = patch.bounds;
+  if (box.empty() || patch.planeCount < 1 || patch.planeCount + 1 > int(ConvexCell::kMaxPlanes))
+    return box;
+  // The patch's points lie inside its planes and its box, so inside its planes and below the
+  // box's highest point along the first plane's normal (its lowest is never lower than that
+  // plane's own offset, which holds points of the box): a cell of at most kMaxPlanes planes
+  // (the box's six faces would exceed it) whose quadric's exact bounds, cut by the box, hold
+  // them all.
+  FixedVector<Vec4, ConvexCell::kMaxPlanes> planes;
+  for (int k = 0; k < patch.planeCount; ++k) planes.push_back(patch.planes[size_t(k)]);
+  const Vec3 m = patch.planes[0].head<3>();
+  const Vec3 highest(m.x() > 0.0 ? box.hi.x() : box.lo.x(), m.y() > 0.0 ? box.hi.y() : box.lo.y(),
+                     m.z() > 0.0 ? box.hi.z() : box.lo.z());
+  planes.push_back(Vec4(-m.x(), -m.y(), -m.z(), m.dot(highest)));
+  if (!boundedWhateverTheOffsets(planes)) return box;
+  const double scale = box.diagonal().maxCoeff() + box.center().cwiseAbs().maxCoeff();
+  const double tolerance = 1e-10 * scale;
+  const ConvexCell cell = makeConvexCell(planes, tolerance);
+  if (cell.overflowed || cell.empty()) return box;
+  Bounds3 tight = quadricBoundsInCell(patch.q, cell);
+  // No point of the quadric in the cell: keep the box, lest rounding lose a root.
+  if (tight.empty() || !allFinite(tight.lo) || !allFinite(tight.hi)) return box;
+  tight.inflate(1e-9 * scale + tolerance);
+  tight.lo = tight.lo.cwiseMax(box.lo);
+  tight.hi = tight.hi.cwiseMin(box.hi);
+  return (tight.lo.array() <= tight.hi.array()).all() ? tight : box;
 }
 
 std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>& patches,

@@ -65,6 +65,68 @@ TEST(QuadricPatchParts, QuadricBoundsInABoxHoldTheQuadricThereAndNoMore) {
   EXPECT_TRUE(quadricBoundsInBox(sphere, box).empty());
 }
 
+// tightPatchBounds on every patch of a model, each given room first (its box grown by a fifth
+// of its diagonal, so that the quadric's other sheets and the cell's far corners come in): the
+// tight box lies in the grown one, is smaller in all, and a patch bounded by it has exactly the
+// hits of the patch bounded by the grown box, for rays aimed at its surface and at its box.
+void expectTightBoundsChangeNoHit(const SurfaceModel& model, double minimumGain) {
+  Pcg32 rng(17);
+  double loose = 0.0, tight = 0.0;
+  int hits = 0;
+  const std::vector<QuadricPatch>& patches = model.renderPatches();
+  for (size_t i = 0; i < patches.size(); ++i) {
+    QuadricPatch grown = patches[i];
+    grown.bounds.inflate(0.2 * grown.bounds.diagonal().norm());
+    QuadricPatch tightened = grown;
+    tightened.bounds = tightPatchBounds(grown);
+    const Bounds3 &a = grown.bounds, &b = tightened.bounds;
+    ASSERT_TRUE((b.lo.array() >= a.lo.array()).all() && (b.hi.array() <= a.hi.array()).all())
+        << "patch " << i;
+    loose += boxArea(a);
+    tight += boxArea(b);
+    const Vec3 size = a.diagonal();
+    for (int r = 0; r < 200; ++r) {
+      // Half the rays aim at the patch's surface, half anywhere in its grown box.
+      const Vec2 uv(rng.nextDouble(), rng.nextDouble());
+      const Vec3 onSurface = model
+                                 .evaluate(i, uv.x() + uv.y() <= 1.0 ? uv.x() : 1.0 - uv.x(),
+                                           uv.x() + uv.y() <= 1.0 ? uv.y() : 1.0 - uv.y())
+                                 .position;
+      const Vec3 inBox = a.lo + Vec3(rng.nextDouble() * size.x(), rng.nextDouble() * size.y(),
+                                     rng.nextDouble() * size.z());
+      const Vec3 target = r % 2 == 0 ? onSurface : inBox;
+      const Vec3 direction = uniformDirection(rng);
+      const Vec3 origin = target - 2.0 * size.norm() * direction;
+      double tA = 0.0, tB = 0.0;
+      const bool hitA = intersectQuadricPatch(grown, origin, direction, 0.0, kInfinity, tA);
+      const bool hitB = intersectQuadricPatch(tightened, origin, direction, 0.0, kInfinity, tB);
+      ASSERT_EQ(hitA, hitB) << "patch " << i << " ray " << r;
+      if (!hitA) continue;
+      ++hits;
+      EXPECT_EQ(tA, tB) << "patch " << i << " ray " << r;
+    }
+  }
+  EXPECT_GT(hits, int(50 * patches.size()));
+  EXPECT_LT(tight, (1.0 - minimumGain) * loose);
+}
+
+TEST(QuadricPatchParts, TightBoundsHoldEveryHitOfTheirPatch) {
+  ShapeParams params;
+  params.level = 2;
+  const auto sphere = std::make_shared<TriangleMesh>(makeBuiltin("icosphere", params).mesh);
+  expectTightBoundsChangeNoHit(ImplicitModel(sphere), 0.3);
+  const auto band = std::make_shared<TriangleMesh>(twistedBand(24, 6, 3.0));
+  expectTightBoundsChangeNoHit(ImplicitModel(band), 0.1);
+  // Normals tilted at random: ellipsoids, hyperboloids and cylinders, some with a second sheet
+  // inside the grown box.
+  TriangleMesh tilted = *sphere;
+  Pcg32 rng(23);
+  for (Vec3& n : tilted.normals)
+    n = (n + 0.4 * Vec3(rng.nextDouble() - 0.5, rng.nextDouble() - 0.5, rng.nextDouble() - 0.5))
+            .normalized();
+  expectTightBoundsChangeNoHit(ImplicitModel(std::make_shared<TriangleMesh>(tilted)), 0.1);
+}
+
 TEST(QuadricPatchParts, WellShapedMeshesKeepTheirPatchesWhole) {
   ShapeParams params;
   params.level = 3;

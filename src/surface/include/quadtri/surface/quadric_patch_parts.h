@@ -56,4 +56,9 @@ std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>&
 /// box; empty where the quadric does not meet it.
 Bounds3 quadricBoundsInBox(const QuadricCoeffs& q, const Bounds3& box);
 
+/// The box of an ordinary patch's points (its quadric inside its planes and its box), exact up
+/// to rounding and grown by a hair as quadricBoundsInBox's; the patch's own box where the
+/// quadric does not meet it (no root may be lost to rounding).
+Bounds3 tightPatchBounds(const QuadricPatch& patch);
+
 }  // namespace quadtri
