@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <span>
 
 #include "quadtri/math/fixed_vector.h"
@@ -163,12 +164,13 @@ Bounds3 quadricBoundsInBox(const QuadricCoeffs& q, const Bounds3& box) {
 
 namespace {
 
-// True where {x : n_i·x + d_i >= 0} is bounded whatever the d_i: no direction r != 0 has
-// n_i·r >= 0 for every i. Such a direction, where one exists, can be taken on the line where two
-// of the planes' normals are both orthogonal to it (an extreme ray of the recession cone, or its
-// lineality), so the pairs' cross products are the only candidates. Directions within rounding
-// of the cone count as in it.
-bool boundedWhateverTheOffsets(std::span<const Vec4> planes) {
+// A direction r != 0 with n_i·r >= 0 for every plane i, along which {x : n_i·x + d_i >= 0}
+// is unbounded whatever the d_i; none where the set is bounded. Such a direction, where one
+// exists, can be taken on the line where two of the planes' normals are both orthogonal to it
+// (an extreme ray of the recession cone, or its lineality), so the pairs' cross products are
+// the only candidates. Directions within rounding of the cone count as in it. Where no two
+// normals are independent, one orthogonal to the first.
+std::optional<Vec3> unboundedDirection(std::span<const Vec4> planes) {
   bool anyPair = false;
   for (size_t i = 0; i < planes.size(); ++i)
     for (size_t j = i + 1; j < planes.size(); ++j) {
@@ -180,30 +182,43 @@ bool boundedWhateverTheOffsets(std::span<const Vec4> planes) {
         bool inCone = true;
         for (const Vec4& plane : planes)
           inCone = inCone && sign * plane.head<3>().dot(r) >= -1e-9 * length;
-        if (inCone) return false;
+        if (inCone) return Vec3(sign * r / length);
       }
     }
-  return anyPair;
+  if (anyPair) return std::nullopt;
+  Vec3 s, t;
+  orthonormalBasis(planes.empty() ? Vec3(Vec3::UnitZ()) : Vec3(planes[0].head<3>().normalized()), s,
+                   t);
+  return s;
+}
+
+// The plane n·x + d >= 0 through the box's highest point along -n: the box lies inside it.
+Vec4 planeHoldingBox(const Vec3& n, const Bounds3& box) {
+  const Vec3 lowest(n.x() > 0.0 ? box.lo.x() : box.hi.x(), n.y() > 0.0 ? box.lo.y() : box.hi.y(),
+                    n.z() > 0.0 ? box.lo.z() : box.hi.z());
+  return Vec4(n.x(), n.y(), n.z(), -n.dot(lowest));
 }
 
 }  // namespace
 
 Bounds3 tightPatchBounds(const QuadricPatch& patch) {
   const Bounds3& box = patch.bounds;
-  if (box.empty() || patch.planeCount < 1 || patch.planeCount + 1 > int(ConvexCell::kMaxPlanes))
+  if (box.empty() || patch.planeCount < 1 || patch.planeCount + 2 > int(ConvexCell::kMaxPlanes))
     return box;
   // The patch's points lie inside its planes and its box, so inside its planes and below the
-  // box's highest point along the first plane's normal (its lowest is never lower than that
-  // plane's own offset, which holds points of the box): a cell of at most kMaxPlanes planes
-  // (the box's six faces would exceed it) whose quadric's exact bounds, cut by the box, hold
-  // them all.
+  // box's highest point along the first plane's normal (the box's lowest is never below that
+  // plane, which holds points of the box): a cell of at most kMaxPlanes planes (the box's six
+  // faces would exceed it) whose quadric's exact bounds, cut by the box, hold them all. Where
+  // that cell is unbounded (a flat patch's planes, which all hold its normal, leave it open
+  // along the normal), the box's slab along the open direction closes it instead.
   FixedVector<Vec4, ConvexCell::kMaxPlanes> planes;
   for (int k = 0; k < patch.planeCount; ++k) planes.push_back(patch.planes[size_t(k)]);
-  const Vec3 m = patch.planes[0].head<3>();
-  const Vec3 highest(m.x() > 0.0 ? box.hi.x() : box.lo.x(), m.y() > 0.0 ? box.hi.y() : box.lo.y(),
-                     m.z() > 0.0 ? box.hi.z() : box.lo.z());
-  planes.push_back(Vec4(-m.x(), -m.y(), -m.z(), m.dot(highest)));
-  if (!boundedWhateverTheOffsets(planes)) return box;
+  planes.push_back(planeHoldingBox(-patch.planes[0].head<3>(), box));
+  if (const std::optional<Vec3> open = unboundedDirection(planes)) {
+    planes.back() = planeHoldingBox(*open, box);
+    planes.push_back(planeHoldingBox(-*open, box));
+    if (unboundedDirection(planes)) return box;
+  }
   const double scale = box.diagonal().maxCoeff() + box.center().cwiseAbs().maxCoeff();
   const double tolerance = 1e-10 * scale;
   const ConvexCell cell = makeConvexCell(planes, tolerance);

@@ -125,6 +125,20 @@ TEST(QuadricPatchParts, TightBoundsHoldEveryHitOfTheirPatch) {
     n = (n + 0.4 * Vec3(rng.nextDouble() - 0.5, rng.nextDouble() - 0.5, rng.nextDouble() - 0.5))
             .normalized();
   expectTightBoundsChangeNoHit(ImplicitModel(std::make_shared<TriangleMesh>(tilted)), 0.1);
+  // Flat faces: each patch is its triangle's plane, inside planes that all hold the face's
+  // normal (the cell is open along it until the box's slab closes it), and its box is the
+  // triangle's own.
+  params.divisions = 3;
+  const auto cube = std::make_shared<TriangleMesh>(makeBuiltin("cube", params).mesh);
+  const ImplicitModel flat(cube);
+  expectTightBoundsChangeNoHit(flat, 0.3);
+  for (size_t t = 0; t < cube->triangleCount(); ++t) {
+    Bounds3 triangle;
+    for (int k = 0; k < 3; ++k) triangle.extend(cube->corner(t, k));
+    const Bounds3& box = flat.renderPatches()[t].bounds;
+    EXPECT_LT((box.lo - triangle.lo).cwiseAbs().maxCoeff(), 1e-8) << "triangle " << t;
+    EXPECT_LT((box.hi - triangle.hi).cwiseAbs().maxCoeff(), 1e-8) << "triangle " << t;
+  }
 }
 
 TEST(QuadricPatchParts, WellShapedMeshesKeepTheirPatchesWhole) {
