@@ -69,6 +69,19 @@ Polytopes polytopesOf(const std::vector<QuadricPatch>& patches, size_t i) {
   return out;
 }
 
+// Exact bounds `tight` of a quadric's points inside `box`, grown for the rounding of the bounds
+// (1e-9 of the size and distance from the origin, `scale`, and the cell's tolerance) and for
+// that of the roots a ray finds, whose error grows with the ray's length: where the surface
+// touches a face of the exact box (a sphere's pole), a root rounded outward would otherwise
+// fall outside it. 1e-5 of the box's side covers rays from 10⁵ patch sizes away at a curvature
+// radius of one patch size, and costs nothing in area. Kept inside `box`.
+Bounds3 grownForRoots(Bounds3 tight, const Bounds3& box, double scale, double tolerance) {
+  tight.inflate(1e-5 * box.diagonal().maxCoeff() + 1e-9 * scale + tolerance);
+  tight.lo = tight.lo.cwiseMax(box.lo);
+  tight.hi = tight.hi.cwiseMin(box.hi);
+  return tight;
+}
+
 // The box of {x in box : inside every plane}: the polytope's vertices, the points where three
 // of its planes meet inside all of them. Empty when none is found.
 Bounds3 clippedBoxBounds(const PlaneList& bounding, const Bounds3& box) {
@@ -156,9 +169,7 @@ Bounds3 quadricBoundsInBox(const QuadricCoeffs& q, const Bounds3& box) {
   Bounds3 tight = quadricBoundsInCell(q, cell);
   if (tight.empty()) return tight;
   if (!allFinite(tight.lo) || !allFinite(tight.hi)) return box;
-  tight.inflate(1e-9 * scale + tolerance);
-  tight.lo = tight.lo.cwiseMax(box.lo);
-  tight.hi = tight.hi.cwiseMin(box.hi);
+  tight = grownForRoots(tight, box, scale, tolerance);
   return tight;
 }
 
@@ -168,8 +179,9 @@ namespace {
 // is unbounded whatever the d_i; none where the set is bounded. Such a direction, where one
 // exists, can be taken on the line where two of the planes' normals are both orthogonal to it
 // (an extreme ray of the recession cone, or its lineality), so the pairs' cross products are
-// the only candidates. Directions within rounding of the cone count as in it. Where no two
-// normals are independent, one orthogonal to the first.
+// the only candidates. Directions within rounding of the cone count as in it, with room for
+// the pairs whose cross products are barely longer than the 1e-9 taken as parallel. Where no
+// two normals are independent, one orthogonal to the first.
 std::optional<Vec3> unboundedDirection(std::span<const Vec4> planes) {
   bool anyPair = false;
   for (size_t i = 0; i < planes.size(); ++i)
@@ -181,7 +193,7 @@ std::optional<Vec3> unboundedDirection(std::span<const Vec4> planes) {
       for (const double sign : {1.0, -1.0}) {
         bool inCone = true;
         for (const Vec4& plane : planes)
-          inCone = inCone && sign * plane.head<3>().dot(r) >= -1e-9 * length;
+          inCone = inCone && sign * plane.head<3>().dot(r) >= -3e-9 * length;
         if (inCone) return Vec3(sign * r / length);
       }
     }
@@ -206,11 +218,11 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch) {
   if (box.empty() || patch.planeCount < 1 || patch.planeCount + 2 > int(ConvexCell::kMaxPlanes))
     return box;
   // The patch's points lie inside its planes and its box, so inside its planes and below the
-  // box's highest point along the first plane's normal (the box's lowest is never below that
-  // plane, which holds points of the box): a cell of at most kMaxPlanes planes (the box's six
-  // faces would exceed it) whose quadric's exact bounds, cut by the box, hold them all. Where
-  // that cell is unbounded (a flat patch's planes, which all hold its normal, leave it open
-  // along the normal), the box's slab along the open direction closes it instead.
+  // box's highest point along the first plane's normal (a cap that holds the whole box, and
+  // only one: that plane is already the cell's floor): a cell of at most kMaxPlanes planes (the
+  // box's six faces would exceed it) whose quadric's exact bounds, cut by the box, hold them
+  // all. Where that cell is unbounded (a flat patch's planes, which all hold its normal, leave
+  // it open along the normal), the box's slab along the open direction closes it instead.
   FixedVector<Vec4, ConvexCell::kMaxPlanes> planes;
   for (int k = 0; k < patch.planeCount; ++k) planes.push_back(patch.planes[size_t(k)]);
   planes.push_back(planeHoldingBox(-patch.planes[0].head<3>(), box));
@@ -226,9 +238,7 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch) {
   Bounds3 tight = quadricBoundsInCell(patch.q, cell);
   // No point of the quadric in the cell: keep the box, lest rounding lose a root.
   if (tight.empty() || !allFinite(tight.lo) || !allFinite(tight.hi)) return box;
-  tight.inflate(1e-9 * scale + tolerance);
-  tight.lo = tight.lo.cwiseMax(box.lo);
-  tight.hi = tight.hi.cwiseMin(box.hi);
+  tight = grownForRoots(tight, box, scale, tolerance);
   return (tight.lo.array() <= tight.hi.array()).all() ? tight : box;
 }
 
