@@ -1,5 +1,6 @@
 #include "quadtri/surface/implicit_model.h"
 
+#include "quadtri/math/fixed_vector.h"
 #include "quadtri/math/large_array.h"
 #include "quadtri/math/parallel.h"
 #include "quadtri/surface/implicit_fit.h"
@@ -72,7 +73,7 @@ std::optional<Vec3> projectForBounds(const QuadricCoeffs& q, const QuadraticPatc
 
 }  // namespace
 
-ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
+ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr, bool exactBoxes)
     : SurfaceModel(std::move(meshPtr)) {
   const TriangleMesh& m = mesh();
   const size_t n = m.triangleCount();
@@ -109,17 +110,21 @@ ImplicitModel::ImplicitModel(std::shared_ptr<const TriangleMesh> meshPtr)
     Bounds3 box;
     for (int k = 0; k < 3; ++k) box.extend(m.corner(t, k));
     const double reach = longestEdge(fp);
+    // The samples on the quadric, which tell the exact box whether the quadric is well
+    // conditioned where the patch is.
+    FixedVector<Vec3, (kBoundSamples + 1) * (kBoundSamples + 2) / 2> onSurface;
     for (int i = 0; i <= kBoundSamples; ++i)
       for (int j = 0; i + j <= kBoundSamples; ++j) {
         const auto p = projectForBounds(patch.q, fp, double(i) / kBoundSamples,
                                         double(j) / kBoundSamples, reach);
+        if (p) onSurface.push_back(*p);
         if (p && patch.inside(*p)) box.extend(*p);
       }
     box.inflate(kBoundMargin * reach);
     // The box above defines how far the patch reaches; its exact bounds within it are what
     // Embree is given, so that rays near a neighbour's surface do not test this patch too.
     patch.bounds = box;
-    patch.bounds = tightPatchBounds(patch);
+    if (exactBoxes) patch.bounds = tightPatchBounds(patch, onSurface);
   });
   setFallbacks(std::move(fallbacks));
 }

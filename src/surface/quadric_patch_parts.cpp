@@ -71,12 +71,14 @@ Polytopes polytopesOf(const std::vector<QuadricPatch>& patches, size_t i) {
 
 // Exact bounds `tight` of a quadric's points inside `box`, grown for the rounding of the bounds
 // (1e-9 of the size and distance from the origin, `scale`, and the cell's tolerance) and for
-// that of the roots a ray finds, whose error grows with the ray's length: where the surface
-// touches a face of the exact box (a sphere's pole), a root rounded outward would otherwise
-// fall outside it. 1e-5 of the box's side covers rays from 10⁵ patch sizes away at a curvature
-// radius of one patch size, and costs nothing in area. Kept inside `box`.
+// that of the roots a ray finds: a ray from far away that grazes the surface, or a quadric with
+// a small gradient, places its root along the ray less precisely (1e-5 of the patch's size from
+// a thousand patch sizes away on the corpus' pinion), and where the surface touches a face of
+// the exact box (a sphere's pole) such a root would fall outside it. 1e-3 of the box's side
+// keeps those roots, as the sampled box's margin did, at a small share of its area. Kept
+// inside `box`.
 Bounds3 grownForRoots(Bounds3 tight, const Bounds3& box, double scale, double tolerance) {
-  tight.inflate(1e-5 * box.diagonal().maxCoeff() + 1e-9 * scale + tolerance);
+  tight.inflate(1e-3 * box.diagonal().maxCoeff() + 1e-9 * scale + tolerance);
   tight.lo = tight.lo.cwiseMax(box.lo);
   tight.hi = tight.hi.cwiseMin(box.hi);
   return tight;
@@ -211,9 +213,41 @@ Vec4 planeHoldingBox(const Vec3& n, const Bounds3& box) {
   return Vec4(n.x(), n.y(), n.z(), -n.dot(lowest));
 }
 
+// A cell with a vertex farther than this many of the box's sides from the box is long.
+constexpr double kLongCell = 1.0;
+// A cell narrower than this share of the sampled box's side, across any of its planes, is thin.
+constexpr double kThinCell = 0.03;
+
+// True where the cell is a closed polytope as built: at least four faces with polygons, every
+// polygon edge a side of exactly two of them and every vertex on at least three. A vertex the
+// construction could not place (three planes too near parallel, where a long thin cell ends)
+// leaves an edge with one face or a vertex with two, and the exact bounds would then miss the
+// part of the cell beyond it.
+bool closedCell(const ConvexCell& cell) {
+  constexpr size_t kVertices = ConvexCell::kMaxVertices;
+  std::array<uint8_t, kVertices * kVertices> sides{};
+  std::array<uint8_t, kVertices> faces{};
+  size_t polygons = 0;
+  for (const ConvexCell::Face& face : cell.faces) {
+    if (face.empty()) continue;
+    ++polygons;
+    for (size_t i = 0; i < face.size(); ++i) {
+      const size_t a = size_t(face[i]), b = size_t(face[(i + 1) % face.size()]);
+      ++sides[std::min(a, b) * kVertices + std::max(a, b)];
+      ++faces[a];
+    }
+  }
+  if (polygons < 4) return false;
+  for (size_t v = 0; v < cell.vertices.size(); ++v)
+    if (faces[v] < 3) return false;
+  for (const uint8_t count : sides)
+    if (count != 0 && count != 2) return false;
+  return true;
+}
+
 }  // namespace
 
-Bounds3 tightPatchBounds(const QuadricPatch& patch) {
+Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurface) {
   const Bounds3& box = patch.bounds;
   if (box.empty() || patch.planeCount < 1 || patch.planeCount + 2 > int(ConvexCell::kMaxPlanes))
     return box;
@@ -234,8 +268,49 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch) {
   const double scale = box.diagonal().maxCoeff() + box.center().cwiseAbs().maxCoeff();
   const double tolerance = 1e-10 * scale;
   const ConvexCell cell = makeConvexCell(planes, tolerance);
-  if (cell.overflowed || cell.empty()) return box;
+  if (cell.overflowed || cell.empty() || !closedCell(cell)) return box;
+  // A cell reaching far beyond the box (planes nearly parallel: a nearly flat patch's plane (1)
+  // and an edge plane that almost holds it) puts its faces' centres, where their conics are
+  // set up, far from the patch, and the conics lose the digits that place the patch's points.
+  const double side = box.diagonal().maxCoeff();
+  Bounds3 reach = box;
+  reach.inflate(kLongCell * side);
+  for (const Vec3& v : cell.vertices)
+    if ((v.array() < reach.lo.array()).any() || (v.array() > reach.hi.array()).any()) return box;
+  // A thin cell (a nearly flat patch between its plane (1) and an edge plane that almost holds
+  // it, or a sliver) has faces the quadric nearly contains, whose conics are ill-conditioned.
+  for (const Vec4& plane : cell.planes) {
+    double width = 0.0;
+    for (const Vec3& v : cell.vertices) width = std::max(width, plane.head<3>().dot(v) + plane[3]);
+    if (width < kThinCell * side) return box;
+  }
+  // A quadric whose zero set double precision places only roughly (a small gradient against
+  // large terms), or that is nearly singular over the cell (its gradient small against its
+  // second derivatives across the cell: a cone's apex, or a sliver's ill-conditioned fit): its
+  // roots along a ray scatter by more than the margin, and its exact bounds say little.
+  const double curvature = quadraticPart(patch.q).norm() * side;
+  const auto illConditioned = [&](const Vec3& v) {
+    const double gradient = quadricGradient(patch.q, v).norm();
+    return quadricRootError(patch.q, v, gradient) > 1e-10 * side || !(1e3 * gradient >= curvature);
+  };
+  for (const Vec3& v : cell.vertices)
+    if (illConditioned(v)) return box;
+  for (const Vec3& v : onSurface)
+    if (illConditioned(v)) return box;
   Bounds3 tight = quadricBoundsInCell(patch.q, cell);
+  // A face the quadric all but contains (a nearly flat patch against its triangle's plane):
+  // where q vanishes along a whole edge its zeros there are not isolated points, so the face's
+  // corners stand for them.
+  for (const ConvexCell::Face& face : cell.faces) {
+    bool vanishes = !face.empty();
+    for (size_t i = 0; vanishes && i < face.size(); ++i) {
+      const Vec3& v = cell.vertices[size_t(face[i])];
+      vanishes = std::abs(evalQuadric(patch.q, v)) <=
+                 1e-9 * quadricGradient(patch.q, v).norm() * box.diagonal().maxCoeff();
+    }
+    if (vanishes)
+      for (const int8_t v : face) tight.extend(cell.vertices[size_t(v)]);
+  }
   // No point of the quadric in the cell: keep the box, lest rounding lose a root.
   if (tight.empty() || !allFinite(tight.lo) || !allFinite(tight.hi)) return box;
   tight = grownForRoots(tight, box, scale, tolerance);

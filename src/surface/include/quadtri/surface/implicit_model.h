@@ -20,7 +20,10 @@ namespace quadtri {
 /// them: edge_curves.h).
 class ImplicitModel final : public SurfaceModel {
  public:
-  explicit ImplicitModel(std::shared_ptr<const TriangleMesh> mesh);
+  /// Each patch is clipped to the box of its sampled points grown by 5% of its longest edge;
+  /// with `exactBoxes` (the default) the box it stores is then the exact box of its points
+  /// inside that one (tightPatchBounds), which gives the same hits and fewer ray tests.
+  explicit ImplicitModel(std::shared_ptr<const TriangleMesh> mesh, bool exactBoxes = true);
   std::string_view name() const override { return "quadric-implicit"; }
   /// f_p(u,v) moved along f_p's unit normal to the nearest root of the ray–quadric equation,
   /// with the quadric's unit gradient oriented to the shading normals. Where no root lies
