@@ -15,11 +15,6 @@ namespace {
 
 using PartBoxes = FixedVector<Bounds3, size_t(1) << kMaxPartDepth>;
 
-double boxArea(const Bounds3& b) {
-  const Vec3 d = b.diagonal();
-  return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
-}
-
 // The six faces of `box` as planes, unit normals pointing in.
 std::array<Vec4, 6> boxFaces(const Bounds3& box) {
   return {Vec4(1, 0, 0, -box.lo.x()), Vec4(-1, 0, 0, box.hi.x()), Vec4(0, 1, 0, -box.lo.y()),
@@ -138,7 +133,7 @@ void splitBox(const QuadricCoeffs& q, const Polytopes& polytopes, const Bounds3&
     lower.hi[axis] = middle;
     upper.lo[axis] = middle;
     const Bounds3 a = boundsInHalf(q, polytopes, lower), b = boundsInHalf(q, polytopes, upper);
-    if (boxArea(a) + boxArea(b) <= kPartSplitGain * boxArea(box)) {
+    if (a.surfaceArea() + b.surfaceArea() <= kPartSplitGain * box.surfaceArea()) {
       if (!a.empty()) splitBox(q, polytopes, a, depth + 1, out);
       if (!b.empty()) splitBox(q, polytopes, b, depth + 1, out);
       return;
@@ -265,14 +260,14 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurf
     planes.push_back(planeHoldingBox(-*open, box));
     if (unboundedDirection(planes)) return box;
   }
-  const double scale = box.diagonal().maxCoeff() + box.center().cwiseAbs().maxCoeff();
+  const double side = box.diagonal().maxCoeff();
+  const double scale = side + box.center().cwiseAbs().maxCoeff();
   const double tolerance = 1e-10 * scale;
   const ConvexCell cell = makeConvexCell(planes, tolerance);
   if (cell.overflowed || cell.empty() || !closedCell(cell)) return box;
   // A cell reaching far beyond the box (planes nearly parallel: a nearly flat patch's plane (1)
   // and an edge plane that almost holds it) puts its faces' centres, where their conics are
   // set up, far from the patch, and the conics lose the digits that place the patch's points.
-  const double side = box.diagonal().maxCoeff();
   Bounds3 reach = box;
   reach.inflate(kLongCell * side);
   for (const Vec3& v : cell.vertices)
@@ -289,14 +284,17 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurf
   // second derivatives across the cell: a cone's apex, or a sliver's ill-conditioned fit): its
   // roots along a ray scatter by more than the margin, and its exact bounds say little.
   const double curvature = quadraticPart(patch.q).norm() * side;
-  const auto illConditioned = [&](const Vec3& v) {
-    const double gradient = quadricGradient(patch.q, v).norm();
+  const auto illConditioned = [&](const Vec3& v, double gradient) {
     return quadricRootError(patch.q, v, gradient) > 1e-10 * side || !(1e3 * gradient >= curvature);
   };
-  for (const Vec3& v : cell.vertices)
-    if (illConditioned(v)) return box;
+  // The gradient's length at each corner of the cell, for this test and the faces' below.
+  std::array<double, ConvexCell::kMaxVertices> gradients;
+  for (size_t i = 0; i < cell.vertices.size(); ++i) {
+    gradients[i] = quadricGradient(patch.q, cell.vertices[i]).norm();
+    if (illConditioned(cell.vertices[i], gradients[i])) return box;
+  }
   for (const Vec3& v : onSurface)
-    if (illConditioned(v)) return box;
+    if (illConditioned(v, quadricGradient(patch.q, v).norm())) return box;
   Bounds3 tight = quadricBoundsInCell(patch.q, cell);
   // A face the quadric all but contains (a nearly flat patch against its triangle's plane):
   // where q vanishes along a whole edge its zeros there are not isolated points, so the face's
@@ -304,9 +302,8 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurf
   for (const ConvexCell::Face& face : cell.faces) {
     bool vanishes = !face.empty();
     for (size_t i = 0; vanishes && i < face.size(); ++i) {
-      const Vec3& v = cell.vertices[size_t(face[i])];
-      vanishes = std::abs(evalQuadric(patch.q, v)) <=
-                 1e-9 * quadricGradient(patch.q, v).norm() * box.diagonal().maxCoeff();
+      const size_t v = size_t(face[i]);
+      vanishes = std::abs(evalQuadric(patch.q, cell.vertices[v])) <= 1e-9 * gradients[v] * side;
     }
     if (vanishes)
       for (const int8_t v : face) tight.extend(cell.vertices[size_t(v)]);
@@ -333,7 +330,7 @@ std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>&
             const size_t t = patches[i].isBridge() ? size_t(patches[i].joins[0]) : i;
             if (t >= triangles) continue;
             const double area = 0.5 * mesh.faceCross(t).norm();
-            isLong[i] = boxArea(patches[i].bounds) > kLongPatchRatio * area;
+            isLong[i] = patches[i].bounds.surfaceArea() > kLongPatchRatio * area;
             found += isLong[i];
           }
           return found;
@@ -360,14 +357,15 @@ std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>&
   const double whole = parallelReduce(
       tbb::blocked_range<size_t>(0, n, 4096), 0.0,
       [&](const tbb::blocked_range<size_t>& range, double sum) {
-        for (size_t i = range.begin(); i != range.end(); ++i) sum += boxArea(patches[i].bounds);
+        for (size_t i = range.begin(); i != range.end(); ++i)
+          sum += patches[i].bounds.surfaceArea();
         return sum;
       },
       [](double a, double b) { return a + b; });
   double saved = 0.0;
   for (size_t i = 0; i < longPatches.size(); ++i) {
-    saved += boxArea(patches[longPatches[i]].bounds);
-    for (const Bounds3& box : boxes[i]) saved -= boxArea(box);
+    saved += patches[longPatches[i]].bounds.surfaceArea();
+    for (const Bounds3& box : boxes[i]) saved -= box.surfaceArea();
   }
   if (total == n || !(saved > (1.0 - kMeshSplitGain) * whole)) return {};
   std::vector<QuadricPatchPart> parts;

@@ -21,9 +21,6 @@ namespace {
 using fixtures::expectExactBoxesChangeNoHit;
 using fixtures::twistedBand;
 
-using fixtures::boxArea;
-using fixtures::inBox;
-
 // A ray from outside the band's box towards a random point near the band.
 Ray randomRay(Pcg32& rng, double height) {
   const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * rng.nextDouble(); };
@@ -59,7 +56,7 @@ TEST(QuadricPatchParts, QuadricBoundsInABoxHoldTheQuadricThereAndNoMore) {
   for (int i = 0; i < 2000; ++i) {
     const double theta = std::acos(0.5 + 0.5 * rng.nextDouble()), phi = 2 * kPi * rng.nextDouble();
     const Vec3 p(std::cos(theta), std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi));
-    EXPECT_TRUE(inBox(cap, p)) << p.transpose();
+    EXPECT_TRUE(cap.contains(p)) << p.transpose();
   }
   // A box the sphere does not reach holds none of it.
   box.lo = Vec3(1.5, -2, -2);
@@ -126,13 +123,13 @@ void expectPartsHoldTheirPatches(const SurfaceModel& model, bool bridges) {
     EXPECT_TRUE((box.lo.array() >= patchBox.lo.array() - 1e-6).all() &&
                 (box.hi.array() <= patchBox.hi.array() + 1e-6).all());
     partsOf[part.patch].push_back(box);
-    split += boxArea(box);
+    split += box.surfaceArea();
   }
   size_t splitBridges = 0;
   for (size_t i = 0; i < patches.size(); ++i) {
     ASSERT_GE(partsOf[i].size(), 1u) << "patch " << i;
     ASSERT_LE(partsOf[i].size(), size_t(1) << kMaxPartDepth) << "patch " << i;
-    whole += boxArea(patches[i].bounds);
+    whole += patches[i].bounds.surfaceArea();
     splitBridges += patches[i].isBridge() && partsOf[i].size() > 1;
   }
   // The robust model's bridges lie along the slivers' long edges: they are split too.
@@ -150,7 +147,7 @@ void expectPartsHoldTheirPatches(const SurfaceModel& model, bool bridges) {
       ++hits;
       const Vec3 point = ray.origin + t * ray.direction;
       bool held = false;
-      for (const Bounds3& box : partsOf[p]) held = held || inBox(box, point);
+      for (const Bounds3& box : partsOf[p]) held = held || box.contains(point);
       ASSERT_TRUE(held) << "patch " << p << " point " << point.transpose();
     }
   }

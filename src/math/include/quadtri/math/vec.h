@@ -56,6 +56,16 @@ struct Bounds3 {
   bool empty() const { return !(lo.x() <= hi.x()); }
   Vec3 diagonal() const { return empty() ? Vec3::Zero() : Vec3(hi - lo); }
   Vec3 center() const { return 0.5 * (lo + hi); }
+  /// The area of the box's six faces (0 when empty): what the chance that a ray meets it is
+  /// proportional to.
+  double surfaceArea() const {
+    const Vec3 d = diagonal();
+    return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
+  }
+  /// p inside the box or on its faces.
+  bool contains(const Vec3& p) const {
+    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+  }
   /// Grows the box by `margin` on every side.
   void inflate(double margin) {
     lo.array() -= margin;
