@@ -521,11 +521,12 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
     packet.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     RTCRayHit16 rayhit;
     alignas(64) int valid[kLanes];  // Embree loads the mask as one vector
+    RTCRay singles[kLanes];         // each lane's float ray, kept for the user scene below
     for (size_t i = 0; i < kLanes; ++i) {
       valid[i] = i < n ? -1 : 0;
       rayhit.hit.geomID[i] = rayhit.hit.primID[i] = rayhit.hit.instID[0][i] =
           accel_detail::kInvalidId;
-      RTCRay single;
+      RTCRay& single = singles[i];
       // An inactive lane gets a defined ray all the same, though Embree only reads the active.
       static const Ray kIdle{Vec3::Zero(), Vec3::UnitZ()};
       accel_detail::fillRay(i < n ? rays[first + i] : kIdle, impl_->origin, single);
@@ -550,7 +551,7 @@ void Accel::intersect(std::span<const Ray> rays, std::span<RayHit> hits, HitNorm
       accel_detail::TraceContext ctx;
       startTrace(ctx, ray);
       RTCRayHit lane;
-      accel_detail::fillRay(ray, impl_->origin, lane.ray);
+      lane.ray = singles[i];
       lane.ray.tfar = rayhit.ray.tfar[i];
       lane.hit.geomID = rayhit.hit.geomID[i];
       lane.hit.primID = rayhit.hit.primID[i];
