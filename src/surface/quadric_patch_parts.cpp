@@ -272,12 +272,22 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurf
   reach.inflate(kLongCell * side);
   for (const Vec3& v : cell.vertices)
     if ((v.array() < reach.lo.array()).any() || (v.array() > reach.hi.array()).any()) return box;
+  // Where the quadric's own bounds cannot be trusted (below), the cell's: every point of the
+  // patch lies inside its planes and its box, so inside the cell and the box, whatever the
+  // quadric. No root is lost to it either: a root the ray test keeps passed the same planes and
+  // box, and lies in the cell up to the rounding of the cell's corners, far below the margin.
+  const auto cellBounds = [&] {
+    Bounds3 corners;
+    for (const Vec3& v : cell.vertices) corners.extend(v);
+    return grownForRoots(corners, box, scale, tolerance);
+  };
   // A thin cell (a nearly flat patch between its plane (1) and an edge plane that almost holds
-  // it, or a sliver) has faces the quadric nearly contains, whose conics are ill-conditioned.
+  // it, or a sliver) has faces the quadric nearly contains, whose conics are ill-conditioned;
+  // such a cell is as tight as the patch across it, and on a fine mesh nearly every cell is one.
   for (const Vec4& plane : cell.planes) {
     double width = 0.0;
     for (const Vec3& v : cell.vertices) width = std::max(width, plane.head<3>().dot(v) + plane[3]);
-    if (width < kThinCell * side) return box;
+    if (width < kThinCell * side) return cellBounds();
   }
   // A quadric whose zero set double precision places only roughly (a small gradient against
   // large terms), or that is nearly singular over the cell (its gradient small against its
@@ -291,10 +301,10 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurf
   std::array<double, ConvexCell::kMaxVertices> gradients;
   for (size_t i = 0; i < cell.vertices.size(); ++i) {
     gradients[i] = quadricGradient(patch.q, cell.vertices[i]).norm();
-    if (illConditioned(cell.vertices[i], gradients[i])) return box;
+    if (illConditioned(cell.vertices[i], gradients[i])) return cellBounds();
   }
   for (const Vec3& v : onSurface)
-    if (illConditioned(v, quadricGradient(patch.q, v).norm())) return box;
+    if (illConditioned(v, quadricGradient(patch.q, v).norm())) return cellBounds();
   Bounds3 tight = quadricBoundsInCell(patch.q, cell);
   // A face the quadric all but contains (a nearly flat patch against its triangle's plane):
   // where q vanishes along a whole edge its zeros there are not isolated points, so the face's

@@ -60,10 +60,12 @@ std::vector<QuadricPatchPart> quadricPatchParts(const std::vector<QuadricPatch>&
 Bounds3 quadricBoundsInBox(const QuadricCoeffs& q, const Bounds3& box);
 
 /// The box of an ordinary patch's points (its quadric inside its planes and its box), exact up
-/// to rounding and grown for it as quadricBoundsInBox's. The patch's own box where the quadric
-/// does not meet it, where the cell the bounds are computed in is thin, long or open, and where
-/// the quadric is ill-conditioned there, at the cell's corners or at `onSurface` (points of the
-/// quadric the caller has, such as the samples its box was built from): no root may be lost.
+/// to rounding and grown for it as quadricBoundsInBox's. Where the cell the bounds are computed
+/// in is thin, or the quadric ill-conditioned there (at the cell's corners or at `onSurface`,
+/// points of the quadric the caller has, such as the samples its box was built from), the box of
+/// the cell cut by the patch's box instead, which holds the patch whatever its quadric; the
+/// patch's own box where the quadric does not meet the cell, or the cell is long, open or not
+/// closed: no root may be lost.
 Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurface = {});
 
 }  // namespace quadtri
