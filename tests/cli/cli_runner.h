@@ -95,6 +95,8 @@ class CliProcess {
     return WIFEXITED(status_) ? WEXITSTATUS(status_) : 128 + WTERMSIG(status_);
   }
   bool killedBySignal() const { return finished_ && WIFSIGNALED(status_); }
+  /// Whether the process has exited and been reaped (by wait or waitForStderr).
+  bool finished() const { return finished_; }
   /// User + system CPU time of the finished process (0 when waitForStderr reaped it).
   double cpuSeconds() const { return cpuSeconds_; }
   double wallSeconds() const { return wallSeconds_; }

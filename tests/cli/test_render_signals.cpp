@@ -113,10 +113,13 @@ TEST(RenderSignals, SecondSignalExitsAtOnceWithoutTemporaryFiles) {
   ASSERT_TRUE(p.waitForStderr("rendering 32x32")) << p.stderrText();
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   p.signal(SIGTERM);
-  // Later than at once: a signal sent while the same one is pending is merged with it. The
-  // pixels in flight take longer than this to finish.
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  p.signal(SIGTERM);
+  // The second one later than at once: a signal sent while the same one is pending is merged
+  // with it, and under load the process may not run for a while. So it is sent again every
+  // 20 ms until the process says it stopped; the pixels in flight take far longer to finish.
+  for (int again = 0; again < 250; ++again) {
+    if (p.waitForStderr("again: stopped at once", 0.02) || p.finished()) break;
+    p.signal(SIGTERM);
+  }
   EXPECT_EQ(p.wait(), 128 + SIGTERM);
   if (tsan)
     ::setenv("TSAN_OPTIONS", tsanBefore.c_str(), 1);
