@@ -5,13 +5,21 @@
 // A summary gives each patch model's CPU time per ray ÷ the native triangles' (the target: at most
 // 1.5× at equal primitive count).
 //
+// Beside them, the floor of Embree's user geometry itself: the same rays straight through
+// Embree (no quadtri code around the call), once through the native triangles and once through
+// the same triangles as user geometry whose callback does exactly their work (Möller–Trumbore
+// in float on the float ray, the triangle's own box). Their ratio is what any user-geometry
+// primitive pays before it does anything of its own.
+//
 //   quadtri_bench --benchmark_filter=Peer --benchmark_min_time=0.2
 #include "bench_peer.h"
 
 #include <benchmark/benchmark.h>
+#include <embree3/rtcore.h>
 
 #include <cstdio>
 #include <ctime>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -34,6 +42,8 @@ constexpr size_t kRays = 1 << 16;
 constexpr size_t kBatch = 1024;
 // "triangles" is Embree's native triangle geometry; the others are user-geometry patches.
 const char* const kKinds[] = {"triangles", "quadric-implicit", "quadric-implicit-robust"};
+// The floor: Embree alone, native triangles and the same triangles as user geometry.
+const char* const kFloorKinds[] = {"embree-native", "embree-user-triangles"};
 
 const std::vector<Ray>& peerRays() {
   static const std::vector<Ray> rays = [] {
@@ -108,6 +118,130 @@ void peer(benchmark::State& state, const std::string& kind, int level) {
       benchmark::Counter(double(kBatch), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The triangles of a mesh as Embree user geometry: the callback intersects the triangle as
+// Embree's own kernel would, in float (Möller–Trumbore), so only the user-geometry path differs.
+struct UserTriangles {
+  const TriangleMesh* mesh;
+};
+
+using Vec3f = Eigen::Vector3f;
+
+void userTriangleBounds(const RTCBoundsFunctionArguments* args) {
+  const auto* user = static_cast<const UserTriangles*>(args->geometryUserPtr);
+  Bounds3 box;
+  for (int k = 0; k < 3; ++k) box.extend(user->mesh->corner(args->primID, k));
+  RTCBounds* o = args->bounds_o;
+  o->lower_x = float(box.lo.x()), o->lower_y = float(box.lo.y()), o->lower_z = float(box.lo.z());
+  o->upper_x = float(box.hi.x()), o->upper_y = float(box.hi.y()), o->upper_z = float(box.hi.z());
+}
+
+void userTriangleIntersect(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const auto* user = static_cast<const UserTriangles*>(args->geometryUserPtr);
+  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const RTCRay& ray = rayhit->ray;
+  const TriangleMesh& mesh = *user->mesh;
+  const Vec3f p0 = mesh.corner(args->primID, 0).cast<float>();
+  const Vec3f e1 = mesh.corner(args->primID, 1).cast<float>() - p0;
+  const Vec3f e2 = mesh.corner(args->primID, 2).cast<float>() - p0;
+  const Vec3f d(ray.dir_x, ray.dir_y, ray.dir_z);
+  const Vec3f p = d.cross(e2);
+  const float det = e1.dot(p);
+  if (det == 0.0f) return;
+  const Vec3f t = Vec3f(ray.org_x, ray.org_y, ray.org_z) - p0;
+  const float u = t.dot(p) / det;
+  if (u < 0.0f || u > 1.0f) return;
+  const Vec3f q = t.cross(e1);
+  const float v = d.dot(q) / det;
+  if (v < 0.0f || u + v > 1.0f) return;
+  const float distance = e2.dot(q) / det;
+  if (!(distance > ray.tnear && distance < ray.tfar)) return;
+  rayhit->ray.tfar = distance;
+  rayhit->hit.u = u;
+  rayhit->hit.v = v;
+  rayhit->hit.geomID = args->geomID;
+  rayhit->hit.primID = args->primID;
+}
+
+// Embree alone on the level's icosphere: its native triangles, or the same triangles as user
+// geometry. Built once per (kind, level), on a device of its own.
+struct FloorScene {
+  std::shared_ptr<const TriangleMesh> mesh;
+  UserTriangles user{};
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+};
+
+FloorScene& floorScene(const std::string& kind, int level) {
+  static std::map<std::pair<std::string, int>, FloorScene> cache;
+  FloorScene& s = cache[{kind, level}];
+  if (s.scene) return s;
+  s.mesh = std::make_shared<const TriangleMesh>(
+      parseBuiltinSpec("icosphere:" + std::to_string(level))->mesh);
+  s.user.mesh = s.mesh.get();
+  s.device = rtcNewDevice(nullptr);
+  s.scene = rtcNewScene(s.device);
+  const TriangleMesh& mesh = *s.mesh;
+  RTCGeometry geometry;
+  if (kind == "embree-native") {
+    geometry = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+      for (int k = 0; k < 3; ++k) vertices[3 * i + size_t(k)] = float(mesh.positions[i][k]);
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.triangleCount()));
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k) indices[3 * t + size_t(k)] = unsigned(mesh.triangles[t][k]);
+  } else {
+    geometry = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geometry, unsigned(mesh.triangleCount()));
+    rtcSetGeometryUserData(geometry, &s.user);
+    rtcSetGeometryBoundsFunction(geometry, userTriangleBounds, nullptr);
+    rtcSetGeometryIntersectFunction(geometry, userTriangleIntersect);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(s.scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(s.scene);
+  return s;
+}
+
+void embreeFloor(benchmark::State& state, const std::string& kind, int level) {
+  enableFlushToZero();
+  const FloorScene& scene = floorScene(kind, level);
+  const std::vector<Ray>& rays = peerRays();
+  size_t i = 0, hits = 0;
+  const double start = threadCpuSeconds();
+  for (auto _ : state)
+    for (size_t k = 0; k < kBatch; ++k, ++i) {
+      const Ray& ray = rays[i % rays.size()];
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      RTCRayHit rayhit{};
+      rayhit.ray.org_x = float(ray.origin.x());
+      rayhit.ray.org_y = float(ray.origin.y());
+      rayhit.ray.org_z = float(ray.origin.z());
+      rayhit.ray.dir_x = float(ray.direction.x());
+      rayhit.ray.dir_y = float(ray.direction.y());
+      rayhit.ray.dir_z = float(ray.direction.z());
+      rayhit.ray.tnear = 0.0f;
+      rayhit.ray.tfar = std::numeric_limits<float>::infinity();
+      rayhit.ray.mask = ~0u;
+      rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene.scene, &context, &rayhit);
+      hits += rayhit.hit.geomID != RTC_INVALID_GEOMETRY_ID ? 1 : 0;
+    }
+  const double seconds = threadCpuSeconds() - start;
+  if (i > 0) secondsPerRay()[{kind, level}] = seconds / double(i);
+  state.counters["primitives"] = double(scene.mesh->triangleCount());
+  state.counters["hit"] = double(hits) / double(i);
+  state.counters["rays/s"] =
+      benchmark::Counter(double(kBatch), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 }  // namespace
 
 void printPeerSummary() {
@@ -126,6 +260,15 @@ void printPeerSummary() {
                       ? ""
                       : (ratio <= 1.5 ? "  (target <= 1.5)" : "  (target <= 1.5: MISSED)"));
     }
+  // The floor, when measured: what Embree's user geometry costs by itself at equal work.
+  for (int level : kLevels) {
+    const auto native = table.find({kFloorKinds[0], level});
+    const auto user = table.find({kFloorKinds[1], level});
+    if (native == table.end() || user == table.end()) continue;
+    std::printf("%-26s %12d %14zu %16.1f %8.2f  (Embree alone: %.1f ns native)\n", kFloorKinds[1],
+                level, size_t(20) << (2 * level), 1e9 * user->second, user->second / native->second,
+                1e9 * native->second);
+  }
 }
 
 void registerPeerBenchmarks() {
@@ -138,4 +281,10 @@ void registerPeerBenchmarks() {
           std::string(kind), level)
           ->Unit(benchmark::kMicrosecond);
     }
+  for (int level : kLevels)
+    for (const char* kind : kFloorKinds)
+      benchmark::RegisterBenchmark(
+          ("Peer/" + std::string(kind) + "/" + std::to_string(level)).c_str(), embreeFloor,
+          std::string(kind), level)
+          ->Unit(benchmark::kMicrosecond);
 }
