@@ -118,21 +118,28 @@ void peer(benchmark::State& state, const std::string& kind, int level) {
       benchmark::Counter(double(kBatch), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-// The triangles of a mesh as Embree user geometry: the callback intersects the triangle as
-// Embree's own kernel would, in float (Möller–Trumbore), so only the user-geometry path differs.
-struct UserTriangles {
-  const TriangleMesh* mesh;
+// The triangles of a mesh as Embree user geometry, packed as Embree's own leaves hold them
+// (a corner and two edges in float, gathered once), and a callback that tests them as its
+// triangle kernel does: Möller–Trumbore against the scaled determinant, one reciprocal for a
+// hit only, the geometric normal written with it; so only the user-geometry path differs.
+using Vec3f = Eigen::Vector3f;
+
+struct PackedTriangle {
+  Vec3f v0, e1, e2;
 };
 
-using Vec3f = Eigen::Vector3f;
+struct UserTriangles {
+  std::vector<PackedTriangle> triangles;
+};
 
 void userTriangleBounds(const RTCBoundsFunctionArguments* args) {
   const auto* user = static_cast<const UserTriangles*>(args->geometryUserPtr);
-  Bounds3 box;
-  for (int k = 0; k < 3; ++k) box.extend(user->mesh->corner(args->primID, k));
+  const PackedTriangle& tri = user->triangles[args->primID];
+  const Vec3f v1 = tri.v0 + tri.e1, v2 = tri.v0 + tri.e2;
+  const Vec3f lo = tri.v0.cwiseMin(v1).cwiseMin(v2), hi = tri.v0.cwiseMax(v1).cwiseMax(v2);
   RTCBounds* o = args->bounds_o;
-  o->lower_x = float(box.lo.x()), o->lower_y = float(box.lo.y()), o->lower_z = float(box.lo.z());
-  o->upper_x = float(box.hi.x()), o->upper_y = float(box.hi.y()), o->upper_z = float(box.hi.z());
+  o->lower_x = lo.x(), o->lower_y = lo.y(), o->lower_z = lo.z();
+  o->upper_x = hi.x(), o->upper_y = hi.y(), o->upper_z = hi.z();
 }
 
 void userTriangleIntersect(const RTCIntersectFunctionNArguments* args) {
@@ -140,27 +147,31 @@ void userTriangleIntersect(const RTCIntersectFunctionNArguments* args) {
   const auto* user = static_cast<const UserTriangles*>(args->geometryUserPtr);
   auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
   const RTCRay& ray = rayhit->ray;
-  const TriangleMesh& mesh = *user->mesh;
-  const Vec3f p0 = mesh.corner(args->primID, 0).cast<float>();
-  const Vec3f e1 = mesh.corner(args->primID, 1).cast<float>() - p0;
-  const Vec3f e2 = mesh.corner(args->primID, 2).cast<float>() - p0;
+  const PackedTriangle& tri = user->triangles[args->primID];
   const Vec3f d(ray.dir_x, ray.dir_y, ray.dir_z);
-  const Vec3f p = d.cross(e2);
-  const float det = e1.dot(p);
-  if (det == 0.0f) return;
-  const Vec3f t = Vec3f(ray.org_x, ray.org_y, ray.org_z) - p0;
-  const float u = t.dot(p) / det;
-  if (u < 0.0f || u > 1.0f) return;
-  const Vec3f q = t.cross(e1);
-  const float v = d.dot(q) / det;
-  if (v < 0.0f || u + v > 1.0f) return;
-  const float distance = e2.dot(q) / det;
-  if (!(distance > ray.tnear && distance < ray.tfar)) return;
-  rayhit->ray.tfar = distance;
-  rayhit->hit.u = u;
-  rayhit->hit.v = v;
+  const Vec3f p = d.cross(tri.e2);
+  const float det = tri.e1.dot(p);
+  const float size = std::abs(det), sign = std::copysign(1.0f, det);
+  if (size == 0.0f) return;
+  const Vec3f t = Vec3f(ray.org_x, ray.org_y, ray.org_z) - tri.v0;
+  const float u = sign * t.dot(p);
+  if (!(u >= 0.0f && u <= size)) return;
+  const Vec3f q = t.cross(tri.e1);
+  const float v = sign * d.dot(q);
+  if (!(v >= 0.0f && u + v <= size)) return;
+  const float scaled = sign * tri.e2.dot(q);
+  if (!(scaled > ray.tnear * size && scaled < ray.tfar * size)) return;
+  const float inverse = 1.0f / size;
+  const Vec3f normal = tri.e1.cross(tri.e2);
+  rayhit->ray.tfar = scaled * inverse;
+  rayhit->hit.u = u * inverse;
+  rayhit->hit.v = v * inverse;
+  rayhit->hit.Ng_x = normal.x();
+  rayhit->hit.Ng_y = normal.y();
+  rayhit->hit.Ng_z = normal.z();
   rayhit->hit.geomID = args->geomID;
   rayhit->hit.primID = args->primID;
+  rayhit->hit.instID[0] = args->context->instID[0];
 }
 
 // Embree alone on the level's icosphere: its native triangles, or the same triangles as user
@@ -178,7 +189,6 @@ FloorScene& floorScene(const std::string& kind, int level) {
   if (s.scene) return s;
   s.mesh = std::make_shared<const TriangleMesh>(
       parseBuiltinSpec("icosphere:" + std::to_string(level))->mesh);
-  s.user.mesh = s.mesh.get();
   s.device = rtcNewDevice(nullptr);
   s.scene = rtcNewScene(s.device);
   const TriangleMesh& mesh = *s.mesh;
@@ -196,6 +206,12 @@ FloorScene& floorScene(const std::string& kind, int level) {
     for (size_t t = 0; t < mesh.triangleCount(); ++t)
       for (int k = 0; k < 3; ++k) indices[3 * t + size_t(k)] = unsigned(mesh.triangles[t][k]);
   } else {
+    s.user.triangles.resize(mesh.triangleCount());
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const Vec3f v0 = mesh.corner(t, 0).cast<float>();
+      s.user.triangles[t] = {v0, mesh.corner(t, 1).cast<float>() - v0,
+                             mesh.corner(t, 2).cast<float>() - v0};
+    }
     geometry = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geometry, unsigned(mesh.triangleCount()));
     rtcSetGeometryUserData(geometry, &s.user);

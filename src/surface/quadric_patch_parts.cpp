@@ -279,7 +279,9 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurf
   const auto cellBounds = [&] {
     Bounds3 corners;
     for (const Vec3& v : cell.vertices) corners.extend(v);
-    return grownForRoots(corners, box, scale, tolerance);
+    corners = grownForRoots(corners, box, scale, tolerance);
+    // A cell that misses the box by more than the margin: the box, as below.
+    return (corners.lo.array() <= corners.hi.array()).all() ? corners : box;
   };
   // A thin cell (a nearly flat patch between its plane (1) and an edge plane that almost holds
   // it, or a sliver) has faces the quadric nearly contains, whose conics are ill-conditioned;
