@@ -99,23 +99,31 @@ std::map<std::pair<std::string, int>, double>& secondsPerRay() {
   return table;
 }
 
-void peer(benchmark::State& state, const std::string& kind, int level) {
+// Traces the peer rays in turn with `hit` (true where the ray hit) for the benchmark's batches,
+// on one thread, and records the CPU time per ray under (kind, level) for the summary.
+template <typename Hit>
+void timeRays(benchmark::State& state, const std::string& kind, int level, size_t primitives,
+              const Hit& hit) {
   enableFlushToZero();
-  const PeerScene& scene = peerScene(kind, level);
   const std::vector<Ray>& rays = peerRays();
   size_t i = 0, hits = 0;
   // Thread CPU time: on a shared machine the wall clock also counts other processes' turns.
   const double start = threadCpuSeconds();
   for (auto _ : state)
-    for (size_t k = 0; k < kBatch; ++k, ++i)
-      hits += scene.accel->intersect(rays[i % rays.size()]).valid() ? 1 : 0;
+    for (size_t k = 0; k < kBatch; ++k, ++i) hits += hit(rays[i % rays.size()]) ? 1 : 0;
   const double seconds = threadCpuSeconds() - start;
   if (i > 0) secondsPerRay()[{kind, level}] = seconds / double(i);
-  state.counters["primitives"] =
-      double(scene.model ? scene.model->renderPatches().size() : scene.mesh->triangleCount());
+  state.counters["primitives"] = double(primitives);
   state.counters["hit"] = double(hits) / double(i);
   state.counters["rays/s"] =
       benchmark::Counter(double(kBatch), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void peer(benchmark::State& state, const std::string& kind, int level) {
+  const PeerScene& scene = peerScene(kind, level);
+  timeRays(state, kind, level,
+           scene.model ? scene.model->renderPatches().size() : scene.mesh->triangleCount(),
+           [&](const Ray& ray) { return scene.accel->intersect(ray).valid(); });
 }
 
 // The triangles of a mesh as Embree user geometry, packed as Embree's own leaves hold them
@@ -226,36 +234,24 @@ FloorScene& floorScene(const std::string& kind, int level) {
 }
 
 void embreeFloor(benchmark::State& state, const std::string& kind, int level) {
-  enableFlushToZero();
   const FloorScene& scene = floorScene(kind, level);
-  const std::vector<Ray>& rays = peerRays();
-  size_t i = 0, hits = 0;
-  const double start = threadCpuSeconds();
-  for (auto _ : state)
-    for (size_t k = 0; k < kBatch; ++k, ++i) {
-      const Ray& ray = rays[i % rays.size()];
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      RTCRayHit rayhit{};
-      rayhit.ray.org_x = float(ray.origin.x());
-      rayhit.ray.org_y = float(ray.origin.y());
-      rayhit.ray.org_z = float(ray.origin.z());
-      rayhit.ray.dir_x = float(ray.direction.x());
-      rayhit.ray.dir_y = float(ray.direction.y());
-      rayhit.ray.dir_z = float(ray.direction.z());
-      rayhit.ray.tnear = 0.0f;
-      rayhit.ray.tfar = std::numeric_limits<float>::infinity();
-      rayhit.ray.mask = ~0u;
-      rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene.scene, &context, &rayhit);
-      hits += rayhit.hit.geomID != RTC_INVALID_GEOMETRY_ID ? 1 : 0;
-    }
-  const double seconds = threadCpuSeconds() - start;
-  if (i > 0) secondsPerRay()[{kind, level}] = seconds / double(i);
-  state.counters["primitives"] = double(scene.mesh->triangleCount());
-  state.counters["hit"] = double(hits) / double(i);
-  state.counters["rays/s"] =
-      benchmark::Counter(double(kBatch), benchmark::Counter::kIsIterationInvariantRate);
+  timeRays(state, kind, level, scene.mesh->triangleCount(), [&](const Ray& ray) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rayhit{};
+    rayhit.ray.org_x = float(ray.origin.x());
+    rayhit.ray.org_y = float(ray.origin.y());
+    rayhit.ray.org_z = float(ray.origin.z());
+    rayhit.ray.dir_x = float(ray.direction.x());
+    rayhit.ray.dir_y = float(ray.direction.y());
+    rayhit.ray.dir_z = float(ray.direction.z());
+    rayhit.ray.tnear = 0.0f;
+    rayhit.ray.tfar = std::numeric_limits<float>::infinity();
+    rayhit.ray.mask = ~0u;
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene.scene, &context, &rayhit);
+    return rayhit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  });
 }
 
 }  // namespace

@@ -271,7 +271,7 @@ Bounds3 tightPatchBounds(const QuadricPatch& patch, std::span<const Vec3> onSurf
   Bounds3 reach = box;
   reach.inflate(kLongCell * side);
   for (const Vec3& v : cell.vertices)
-    if ((v.array() < reach.lo.array()).any() || (v.array() > reach.hi.array()).any()) return box;
+    if (!reach.contains(v)) return box;
   // Where the quadric's own bounds cannot be trusted (below), the cell's: every point of the
   // patch lies inside its planes and its box, so inside the cell and the box, whatever the
   // quadric. No root is lost to it either: a root the ray test keeps passed the same planes and

@@ -71,16 +71,16 @@ TEST_P(CorpusSubset, RobustImplicitModelDoesNotCrackOnAMillionLines) {
   EXPECT_EQ(*m.crackRate, 0.0) << GetParam();
 }
 
-// PN's corner tangents are what both sides of its edges share, so it folds at no consistent
-// corner and meets each one's normal exactly (crease-split normals included).
 // quadric-implicit's exact boxes on real meshes, whose slivers and nearly flat patches make thin
 // and long cells and quadrics that double precision places roughly: every patch keeps every hit
-// it has with its sampled box (no gain asked: such patches keep their sampled box).
+// it has with its sampled box (no gain asked: a long or unclosed cell keeps the sampled box).
 TEST_P(CorpusSubset, ImplicitModelsExactBoxesKeepEveryHit) {
   if (!corpus()) GTEST_SKIP() << "QUADTRI_CORPUS is not set";
   fixtures::expectExactBoxesChangeNoHit(load(), 0.0);
 }
 
+// PN's corner tangents are what both sides of its edges share, so it folds at no consistent
+// corner and meets each one's normal exactly (crease-split normals included).
 TEST_P(CorpusSubset, PnMeetsEveryConsistentCorner) {
   if (!corpus()) GTEST_SKIP() << "QUADTRI_CORPUS is not set";
   const auto mesh = load();
