@@ -28,18 +28,53 @@ class TriangleCrossings {
       for (uint32_t v : mesh.triangles[t]) ring_[fill[v]++] = t;
   }
 
-  /// Triangles crossed by the line o + s·d among the vertex one-rings of the candidates.
+  /// Buffers of count(), kept across lines.
+  struct Scratch {
+    std::vector<uint32_t> tested, vertices, fresh;
+  };
+
+  /// Triangles crossed by the line o + s·d among the vertex one-rings of the candidates and,
+  /// in turn, of every crossed triangle's vertices: where the surface folds over itself within
+  /// float precision (three sheets 1e-3 of an edge apart on `quadric-param`'s tessellation of
+  /// `eight`), Embree may report one sheet of the fold and the line's crossings of the other
+  /// two lie beyond its one-ring.
   size_t count(const Vec3& o, const Vec3& d, const std::vector<RayHit>& candidates,
-               std::vector<uint32_t>& scratch) const {
-    scratch.clear();
+               Scratch& scratch) const {
+    std::vector<uint32_t>& tested = scratch.tested;  // sorted
+    std::vector<uint32_t>& vertices = scratch.vertices;
+    std::vector<uint32_t>& fresh = scratch.fresh;
+    tested.clear();
+    vertices.clear();
     for (const RayHit& hit : candidates)
-      for (uint32_t v : mesh_.triangles[hit.primitive])
-        scratch.insert(scratch.end(), ring_.begin() + ringStart_[v],
-                       ring_.begin() + ringStart_[v + 1]);
-    std::sort(scratch.begin(), scratch.end());
-    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+      for (uint32_t v : mesh_.triangles[hit.primitive]) vertices.push_back(v);
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    size_t expanded = 0;  // vertices[0, expanded) have their rings in `tested`
     size_t crossed = 0;
-    for (uint32_t t : scratch) crossed += crosses(t, o, d);
+    while (expanded < vertices.size()) {
+      fresh.clear();
+      for (size_t i = expanded; i < vertices.size(); ++i) {
+        const uint32_t v = vertices[i];
+        for (uint32_t k = ringStart_[v]; k < ringStart_[v + 1]; ++k)
+          if (!std::binary_search(tested.begin(), tested.end(), ring_[k]))
+            fresh.push_back(ring_[k]);
+      }
+      expanded = vertices.size();
+      std::sort(fresh.begin(), fresh.end());
+      fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+      for (uint32_t t : fresh) {
+        if (!crosses(t, o, d)) continue;
+        ++crossed;
+        for (uint32_t v : mesh_.triangles[t])
+          if (std::find(vertices.begin(), vertices.end(), v) == vertices.end())
+            vertices.push_back(v);
+      }
+      // The newly added vertices come after `expanded`; `vertices` is no longer sorted, which
+      // only the find above reads.
+      const size_t before = tested.size();
+      tested.insert(tested.end(), fresh.begin(), fresh.end());
+      std::inplace_merge(tested.begin(), tested.begin() + std::ptrdiff_t(before), tested.end());
+    }
     return crossed;
   }
 
@@ -122,25 +157,43 @@ size_t patchCrossings(std::vector<LineHit>& line, double mergeDistance,
   return crossings;
 }
 
+size_t triangleCrossings(const TriangleMesh& mesh, const Vec3& o, const Vec3& d,
+                         const std::vector<uint32_t>& candidates) {
+  std::vector<RayHit> hits(candidates.size());
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (candidates[i] >= mesh.triangleCount())
+      fail("triangle crossings: candidate {} is not a triangle of the mesh ({} triangles)",
+           candidates[i], mesh.triangleCount());
+    hits[i].primitive = candidates[i];
+  }
+  TriangleCrossings::Scratch scratch;
+  return TriangleCrossings(mesh).count(o, d, hits, scratch);
+}
+
 double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options) {
   if (options.lines == 0) fail("crack rate: the number of lines must be positive");
   Accel accel(Accel::Options{true, true});  // robust, reporting every hit
   addModelGeometry(accel, geometry);
   accel.commit();
-  Bounds3 box = accel.bounds();
-  if (box.empty()) fail("crack rate: the geometry is empty");
+  const Bounds3 geometryBox = accel.bounds();
+  if (geometryBox.empty()) fail("crack rate: the geometry is empty");
+  Bounds3 box = options.lineBox.empty() ? geometryBox : options.lineBox;
   const double diagonal = box.diagonal().norm();
   box.inflate(options.boxMargin * diagonal);
-  // The lines start inside the grown box and run both ways through all of it, so where the
-  // margin would take their origins past what Embree traces (geometry near its limit), the box
-  // is kept within that limit: any point of the line serves as its origin.
+  // The lines start inside the grown box and run both ways through it and through the
+  // geometry's box, so where the margin would take their origins past what Embree traces
+  // (geometry near its limit), the box is kept within that limit: any point of the line
+  // serves as its origin.
   for (int a = 0; a < 3; ++a) {
     box.lo[a] = std::max(box.lo[a], -Accel::kLargestCoordinate);
     box.hi[a] = std::min(box.hi[a], Accel::kLargestCoordinate);
   }
   const double mergeDistance = 1e-7 * diagonal;
-  // From a point of the grown box, the whole box lies within its diagonal.
-  const double reach = box.diagonal().norm();
+  // From a point of the grown box, the grown box and the geometry's box lie within the
+  // diagonal of their union.
+  Bounds3 traced = box;
+  traced.extend(geometryBox);
+  const double reach = traced.diagonal().norm();
   const std::optional<TriangleCrossings> triangles =
       geometry.patches || geometry.bezier ? std::nullopt
                                           : std::optional<TriangleCrossings>(geometry.triangles);
@@ -168,7 +221,7 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
     return out;
   };
   auto cracked = [&](const Vec3& p, const Vec3& d, std::vector<RayHit>& hits,
-                     std::vector<LineHit>& line, std::vector<uint32_t>& scratch) {
+                     std::vector<LineHit>& line, TriangleCrossings::Scratch& scratch) {
     hits.clear();
     line.clear();
     for (const double sign : {1.0, -1.0}) {
@@ -192,7 +245,7 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
         const FlushToZeroScope flushToZero;
         std::vector<RayHit> hits;
         std::vector<LineHit> line;
-        std::vector<uint32_t> scratch;
+        TriangleCrossings::Scratch scratch;
         for (size_t i = range.begin(); i != range.end(); ++i) {
           Pcg32 rng(options.seed, i);
           const Vec3 u(rng.nextDouble(), rng.nextDouble(), rng.nextDouble());

@@ -231,7 +231,10 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
     // The acceleration structure's refusals (a coordinate beyond what Embree traces) name the
     // vertex, not the mesh: say which.
     try {
-      m.crackRate = crackRate(geometry, options.crack);
+      // Every model of the mesh on the same lines: those through the mesh's own box.
+      CrackRateOptions crack = options.crack;
+      if (crack.lineBox.empty()) crack.lineBox = model.mesh().bounds();
+      m.crackRate = crackRate(geometry, crack);
     } catch (const Error& e) {
       fail("{}: crack rate of {}: {}", meshName, m.model, e.what());
     }

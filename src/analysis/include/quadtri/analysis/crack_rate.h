@@ -15,13 +15,18 @@ namespace quadtri {
 struct CrackRateOptions {
   size_t lines = 100000;
   uint64_t seed = 1;
-  /// Lines pass through the geometry's box grown by this fraction of its diagonal on every
-  /// side, so that some lines miss the surface or start outside it.
+  /// Lines pass through `lineBox` grown by this fraction of its diagonal on every side, so
+  /// that some lines miss the surface or start outside it.
   double boxMargin = 0.05;
+  /// The box the lines are drawn through (before the margin); empty: the geometry's own box.
+  /// Give every model of one mesh the mesh's box, and they are all measured on the same lines:
+  /// the geometry's box is the union of its primitives' boxes, which depends on how tightly a
+  /// model bounds its patches. Each line is traced through the whole of both boxes.
+  Bounds3 lineBox;
 };
 
 /// Fraction of `options.lines` random lines crossing `geometry` an odd number of times. Each
-/// line passes through a uniform point of the grown box with a uniform direction and is traced
+/// line passes through a uniform point of the grown line box with a uniform direction and is traced
 /// both ways in a robust Embree scene that reports every hit. Line i draws from its own PCG32
 /// stream, so the result does not depend on the thread count.
 ///
@@ -33,6 +38,13 @@ struct CrackRateOptions {
 /// cross the same way (one crossing through a shared boundary); a cluster that enters and leaves
 /// counts twice.
 double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options = {});
+
+/// Crossings of the line o + s·d with `mesh`'s triangles, as crackRate counts them for triangle
+/// geometry with Embree's hits as `candidates`: exact edge signs on the vertex one-rings of the
+/// candidates and, in turn, of every crossed triangle's vertices (a line through a fold that
+/// Embree sees one sheet of still meets the others). Error for a candidate beyond the mesh.
+size_t triangleCrossings(const TriangleMesh& mesh, const Vec3& o, const Vec3& d,
+                         const std::vector<uint32_t>& candidates);
 
 /// A primitive's hit at signed distance s along a line, whether it enters the surface there, and
 /// whether it may be one point of a boundary two primitives share (always, for quadric patches;
