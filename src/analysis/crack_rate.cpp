@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <vector>
 
@@ -30,50 +32,63 @@ class TriangleCrossings {
 
   /// Buffers of count(), kept across lines.
   struct Scratch {
-    std::vector<uint32_t> tested, vertices, fresh;
+    std::vector<uint32_t> tested, known, pending, fresh, merged;
   };
 
   /// Triangles crossed by the line o + s·d among the vertex one-rings of the candidates and,
   /// in turn, of every crossed triangle's vertices: where the surface folds over itself within
   /// float precision (three sheets 1e-3 of an edge apart on `quadric-param`'s tessellation of
   /// `eight`), Embree may report one sheet of the fold and the line's crossings of the other
-  /// two lie beyond its one-ring.
+  /// two lie beyond its one-ring. Each round works on sorted sets, so a line with n hits costs
+  /// O(n log n), not O(n²).
   size_t count(const Vec3& o, const Vec3& d, const std::vector<RayHit>& candidates,
                Scratch& scratch) const {
-    std::vector<uint32_t>& tested = scratch.tested;  // sorted
-    std::vector<uint32_t>& vertices = scratch.vertices;
+    std::vector<uint32_t>& tested = scratch.tested;    // triangles tested so far, sorted
+    std::vector<uint32_t>& known = scratch.known;      // vertices whose rings are tested, sorted
+    std::vector<uint32_t>& pending = scratch.pending;  // vertices whose rings are next, sorted
     std::vector<uint32_t>& fresh = scratch.fresh;
+    std::vector<uint32_t>& merged = scratch.merged;
+    const auto sortUnique = [](std::vector<uint32_t>& v) {
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+    };
+    // a ← a ∪ b, both sorted.
+    const auto unite = [&merged](std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+      merged.clear();
+      std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(merged));
+      a.swap(merged);
+    };
     tested.clear();
-    vertices.clear();
+    known.clear();
+    pending.clear();
     for (const RayHit& hit : candidates)
-      for (uint32_t v : mesh_.triangles[hit.primitive]) vertices.push_back(v);
-    std::sort(vertices.begin(), vertices.end());
-    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-    size_t expanded = 0;  // vertices[0, expanded) have their rings in `tested`
+      for (uint32_t v : mesh_.triangles[hit.primitive]) pending.push_back(v);
+    sortUnique(pending);
     size_t crossed = 0;
-    while (expanded < vertices.size()) {
+    while (!pending.empty()) {
       fresh.clear();
-      for (size_t i = expanded; i < vertices.size(); ++i) {
-        const uint32_t v = vertices[i];
-        for (uint32_t k = ringStart_[v]; k < ringStart_[v + 1]; ++k)
-          if (!std::binary_search(tested.begin(), tested.end(), ring_[k]))
-            fresh.push_back(ring_[k]);
-      }
-      expanded = vertices.size();
-      std::sort(fresh.begin(), fresh.end());
-      fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
-      for (uint32_t t : fresh) {
-        if (!crosses(t, o, d)) continue;
-        ++crossed;
-        for (uint32_t v : mesh_.triangles[t])
-          if (std::find(vertices.begin(), vertices.end(), v) == vertices.end())
-            vertices.push_back(v);
-      }
-      // The newly added vertices come after `expanded`; `vertices` is no longer sorted, which
-      // only the find above reads.
-      const size_t before = tested.size();
-      tested.insert(tested.end(), fresh.begin(), fresh.end());
-      std::inplace_merge(tested.begin(), tested.begin() + std::ptrdiff_t(before), tested.end());
+      for (uint32_t v : pending)
+        fresh.insert(fresh.end(), ring_.begin() + ringStart_[v], ring_.begin() + ringStart_[v + 1]);
+      sortUnique(fresh);
+      unite(known, pending);
+      // Only the triangles not tested in an earlier round.
+      merged.clear();
+      std::set_difference(fresh.begin(), fresh.end(), tested.begin(), tested.end(),
+                          std::back_inserter(merged));
+      fresh.swap(merged);
+      pending.clear();
+      for (uint32_t t : fresh)
+        if (crosses(t, o, d)) {
+          ++crossed;
+          for (uint32_t v : mesh_.triangles[t]) pending.push_back(v);
+        }
+      unite(tested, fresh);
+      // The crossed triangles' vertices whose rings are not tested yet.
+      sortUnique(pending);
+      merged.clear();
+      std::set_difference(pending.begin(), pending.end(), known.begin(), known.end(),
+                          std::back_inserter(merged));
+      pending.swap(merged);
     }
     return crossed;
   }
@@ -177,7 +192,21 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
   accel.commit();
   const Bounds3 geometryBox = accel.bounds();
   if (geometryBox.empty()) fail("crack rate: the geometry is empty");
-  Bounds3 box = options.lineBox.empty() ? geometryBox : options.lineBox;
+  if (const std::optional<Bounds3>& given = options.lineBox) {
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(given->lo[a]) || !std::isfinite(given->hi[a]) ||
+          !(given->lo[a] <= given->hi[a]) ||
+          !(std::max(std::abs(given->lo[a]), std::abs(given->hi[a])) <= Accel::kLargestCoordinate))
+        fail(
+            "crack rate: the line box [{}, {}] × [{}, {}] × [{}, {}] is not a box of finite "
+            "coordinates within ±{:g} (the largest Embree traces)",
+            given->lo.x(), given->hi.x(), given->lo.y(), given->hi.y(), given->lo.z(),
+            given->hi.z(), Accel::kLargestCoordinate);
+    if (!(given->diagonal().norm() > 0.0))
+      fail("crack rate: the line box is a single point ({}, {}, {}); it needs an extent",
+           given->lo.x(), given->lo.y(), given->lo.z());
+  }
+  Bounds3 box = options.lineBox.value_or(geometryBox);
   const double diagonal = box.diagonal().norm();
   box.inflate(options.boxMargin * diagonal);
   // The lines start inside the grown box and run both ways through it and through the
@@ -188,7 +217,8 @@ double crackRate(const ModelGeometry& geometry, const CrackRateOptions& options)
     box.lo[a] = std::max(box.lo[a], -Accel::kLargestCoordinate);
     box.hi[a] = std::min(box.hi[a], Accel::kLargestCoordinate);
   }
-  const double mergeDistance = 1e-7 * diagonal;
+  // Hits merge within the geometry's rounding, whatever box the lines come through.
+  const double mergeDistance = 1e-7 * geometryBox.diagonal().norm();
   // From a point of the grown box, the grown box and the geometry's box lie within the
   // diagonal of their union.
   Bounds3 traced = box;

@@ -233,7 +233,7 @@ ModelMetrics analyzeModel(const SurfaceModel& model, const std::string& meshName
     try {
       // Every model of the mesh on the same lines: those through the mesh's own box.
       CrackRateOptions crack = options.crack;
-      if (crack.lineBox.empty()) crack.lineBox = model.mesh().bounds();
+      if (!crack.lineBox) crack.lineBox = model.mesh().bounds();
       m.crackRate = crackRate(geometry, crack);
     } catch (const Error& e) {
       fail("{}: crack rate of {}: {}", meshName, m.model, e.what());

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "quadtri/geometry/model_geometry.h"
@@ -18,11 +19,12 @@ struct CrackRateOptions {
   /// Lines pass through `lineBox` grown by this fraction of its diagonal on every side, so
   /// that some lines miss the surface or start outside it.
   double boxMargin = 0.05;
-  /// The box the lines are drawn through (before the margin); empty: the geometry's own box.
+  /// The box the lines are drawn through (before the margin); none: the geometry's own box.
   /// Give every model of one mesh the mesh's box, and they are all measured on the same lines:
   /// the geometry's box is the union of its primitives' boxes, which depends on how tightly a
-  /// model bounds its patches. Each line is traced through the whole of both boxes.
-  Bounds3 lineBox;
+  /// model bounds its patches. Each line is traced through the whole of both boxes. Error for
+  /// a box that is inverted, not finite, a single point or beyond what Embree traces.
+  std::optional<Bounds3> lineBox;
 };
 
 /// Fraction of `options.lines` random lines crossing `geometry` an odd number of times. Each
