@@ -28,9 +28,9 @@ struct CrackRateOptions {
 };
 
 /// Fraction of `options.lines` random lines crossing `geometry` an odd number of times. Each
-/// line passes through a uniform point of the grown line box with a uniform direction and is traced
-/// both ways in a robust Embree scene that reports every hit. Line i draws from its own PCG32
-/// stream, so the result does not depend on the thread count.
+/// line passes through a uniform point of the grown line box with a uniform direction and is
+/// traced both ways in a robust Embree scene that reports every hit. Line i draws from its own
+/// PCG32 stream, so the result does not depend on the thread count.
 ///
 /// Triangles: Embree's hits are candidates only. Each candidate's vertex one-ring is tested in
 /// double precision with edge-side signs (the triple product d·((a−o)×(b−o))) computed once per
